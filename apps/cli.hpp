@@ -1,0 +1,36 @@
+// The weft command line: global options, and subcommands that register themselves (apps/cmd_*.cpp).
+#pragma once
+#include "backends/backend.hpp"
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace weft::cli {
+
+struct GlobalOptions {
+  std::string backend;  // empty: default_backend()
+  int threads = 0;      // 0: Kokkos' default
+};
+
+// A user-facing error: printed as "weft: <message>", exit code `code`.
+struct Error : std::runtime_error {
+  int code;
+  explicit Error(const std::string& m, int c = 1) : std::runtime_error(m), code(c) {}
+};
+
+// Resolves --backend against this build; throws Error when it lacks the backend.
+Backend resolve_backend(const GlobalOptions& g);
+
+// The work a subcommand does once parsing is done; returns the exit code.
+using Action = std::function<int()>;
+// A subcommand adds itself to `app` and, from its parse callback, sets `run`.
+using AddCommand = void (*)(CLI::App& app, const GlobalOptions& g, Action& run);
+
+// In a cmd_*.cpp:  static const weft::cli::Register reg("name", add_name);
+struct Register {
+  Register(const char* name, AddCommand add);
+};
+
+}  // namespace weft::cli

@@ -1,0 +1,50 @@
+#include "apps/cli.hpp"
+
+#include <iostream>
+#include <map>
+
+namespace weft::cli {
+
+static std::map<std::string, AddCommand>& registry() {
+  static std::map<std::string, AddCommand> r;  // sorted by name, so --help lists them in order
+  return r;
+}
+
+Register::Register(const char* name, AddCommand add) { registry()[name] = add; }
+
+Backend resolve_backend(const GlobalOptions& g) {
+  if (g.backend.empty()) return default_backend();
+  const auto b = parse_backend(g.backend);
+  if (!b) throw Error("unknown backend '" + g.backend + "' (serial, openmp or cuda)", 2);
+  if (!backend_compiled(*b)) {
+    std::string have;
+    for (Backend c : compiled_backends()) have += std::string(have.empty() ? "" : ", ") + backend_name(c);
+    throw Error(std::string("this build of weft has no ") + backend_name(*b) + " backend (it has: " + have + ")", 2);
+  }
+  return *b;
+}
+
+}  // namespace weft::cli
+
+int main(int argc, char** argv) {
+  using namespace weft::cli;
+  CLI::App app{"weft: a GPU cloth solver for character effects (XPBD, Vellum-compatible)"};
+  app.require_subcommand(1);
+  GlobalOptions g;
+  app.add_option("--backend", g.backend, "serial | openmp | cuda (default: the fastest compiled)");
+  app.add_option("--threads", g.threads, "host threads for the openmp backend")->check(CLI::NonNegativeNumber);
+  Action run;
+  for (auto& [name, add] : registry()) add(app, g, run);
+  try {
+    app.parse(argc, argv);
+    return run ? run() : 0;
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const Error& e) {
+    std::cerr << "weft: " << e.what() << "\n";
+    return e.code;
+  } catch (const std::exception& e) {
+    std::cerr << "weft: " << e.what() << "\n";
+    return 1;
+  }
+}

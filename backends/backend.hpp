@@ -1,0 +1,29 @@
+// Which Kokkos execution space a run uses, chosen at run time from those this build was compiled for.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace weft {
+
+enum class Backend { Serial, OpenMP, Cuda };
+
+const char* backend_name(Backend b);                        // "serial", "openmp", "cuda"
+std::optional<Backend> parse_backend(const std::string& s);  // case-insensitive
+std::vector<Backend> compiled_backends();                   // in this build
+bool backend_compiled(Backend b);
+Backend default_backend();                                  // cuda if compiled, else openmp, else serial
+
+// Kokkos for the lifetime of the object. threads <= 0: Kokkos' default.
+class Runtime {
+ public:
+  explicit Runtime(int threads = 0, int device = -1);
+  ~Runtime();
+  Runtime(const Runtime&) = delete;
+  Runtime& operator=(const Runtime&) = delete;
+};
+
+// Human-readable lines about the devices and host threads this build can use.
+std::vector<std::string> describe_devices();
+
+}  // namespace weft

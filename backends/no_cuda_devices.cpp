@@ -1,0 +1,7 @@
+// Builds without CUDA list no CUDA devices.
+#include <string>
+#include <vector>
+
+namespace weft {
+std::vector<std::string> describe_cuda_devices() { return {}; }
+}  // namespace weft

@@ -1,0 +1,90 @@
+// Reductions of doubles whose rounding does not depend on the backend or thread count: the data is cut
+// into blocks of kReduceBlock elements, each block is folded left to right, and the block results are
+// reduced the same way until one value is left. The shape depends only on n.
+#pragma once
+#include "core/real.hpp"
+
+#include <Kokkos_Core.hpp>
+#include <vector>
+
+namespace weft {
+
+inline constexpr int kReduceBlock = 256;
+
+struct SumOp {
+  KOKKOS_INLINE_FUNCTION static real identity() { return 0; }
+  KOKKOS_INLINE_FUNCTION real operator()(real a, real b) const { return a + b; }
+};
+struct MinOp {
+  KOKKOS_INLINE_FUNCTION static real identity() { return __builtin_huge_val(); }
+  KOKKOS_INLINE_FUNCTION real operator()(real a, real b) const { return min_(a, b); }
+};
+struct MaxOp {
+  KOKKOS_INLINE_FUNCTION static real identity() { return -__builtin_huge_val(); }
+  KOKKOS_INLINE_FUNCTION real operator()(real a, real b) const { return max_(a, b); }
+};
+
+// Reduce x[0..n) into out() on the device; no host copy.
+template <class Exec, class Op, class XView, class OutView>
+void reduce_fixed_into(const Exec& exec, const XView& x, const OutView& out, Op op = Op{}) {
+  using Mem = typename Exec::memory_space;
+  const long n = static_cast<long>(x.extent(0));
+  if (n == 0) {
+    Kokkos::parallel_for("weft::reduce_empty", Kokkos::RangePolicy<Exec>(exec, 0, 1),
+                         KOKKOS_LAMBDA(int) { out() = Op::identity(); });
+    return;
+  }
+  Kokkos::View<const real*, Mem> in = x;
+  while (true) {
+    const long len = static_cast<long>(in.extent(0));
+    const long nb = (len + kReduceBlock - 1) / kReduceBlock;
+    Kokkos::View<real*, Mem> partial(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::reduce_partial"), nb);
+    Kokkos::parallel_for(
+        "weft::reduce_blocks", Kokkos::RangePolicy<Exec>(exec, 0, nb), KOKKOS_LAMBDA(long b) {
+          const long lo = b * kReduceBlock, hi = lo + kReduceBlock < len ? lo + kReduceBlock : len;
+          real acc = in(lo);
+          for (long i = lo + 1; i < hi; ++i) acc = op(acc, in(i));
+          partial(b) = acc;
+        });
+    if (nb == 1) {
+      Kokkos::parallel_for("weft::reduce_out", Kokkos::RangePolicy<Exec>(exec, 0, 1),
+                           KOKKOS_LAMBDA(int) { out() = partial(0); });
+      return;
+    }
+    in = partial;
+  }
+}
+
+// Reduce to a host value (one small copy).
+template <class Exec, class Op, class XView>
+real reduce_fixed(const Exec& exec, const XView& x, Op op = Op{}) {
+  Kokkos::View<real, typename Exec::memory_space> out("weft::reduce_result");
+  reduce_fixed_into<Exec, Op>(exec, x, out, op);
+  real h = 0;
+  Kokkos::deep_copy(exec, h, out);
+  exec.fence();
+  return h;
+}
+
+template <class Exec, class XView> real sum_fixed(const Exec& e, const XView& x) { return reduce_fixed(e, x, SumOp{}); }
+template <class Exec, class XView> real min_fixed(const Exec& e, const XView& x) { return reduce_fixed(e, x, MinOp{}); }
+template <class Exec, class XView> real max_fixed(const Exec& e, const XView& x) { return reduce_fixed(e, x, MaxOp{}); }
+
+// The same tree on the host, for tests and host-side statistics.
+template <class Op>
+real reduce_fixed_host(std::vector<real> v, Op op = Op{}) {
+  if (v.empty()) return Op::identity();
+  while (v.size() > 1) {
+    std::vector<real> next((v.size() + kReduceBlock - 1) / kReduceBlock);
+    for (size_t b = 0; b < next.size(); ++b) {
+      const size_t lo = b * kReduceBlock, hi = lo + kReduceBlock < v.size() ? lo + kReduceBlock : v.size();
+      real acc = v[lo];
+      for (size_t i = lo + 1; i < hi; ++i) acc = op(acc, v[i]);
+      next[b] = acc;
+    }
+    v.swap(next);
+  }
+  return v[0];
+}
+
+}  // namespace weft

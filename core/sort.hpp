@@ -1,0 +1,57 @@
+// Stable LSD radix sort of (uint64 key, uint32 value) pairs, 8 bits a pass. Each block of kSortBlock
+// items counts its digits, an integer scan over (digit, block) gives every block its output ranges, and
+// each block scatters its items in order. The result is the unique stable order, on every backend.
+#pragma once
+#include "core/scan.hpp"
+
+#include <Kokkos_Core.hpp>
+#include <cstdint>
+
+namespace weft {
+
+inline constexpr int kSortBlock = 256;
+
+// Sorts keys (and values alongside) ascending; only the low key_bits bits of each key are compared.
+template <class Exec, class KeyView, class ValView>
+void radix_sort_pairs(const Exec& exec, const KeyView& keys, const ValView& vals, int key_bits = 64) {
+  using Mem = typename Exec::memory_space;
+  const long n = static_cast<long>(keys.extent(0));
+  if (n < 2) return;
+  const long nb = (n + kSortBlock - 1) / kSortBlock;
+  Kokkos::View<uint64_t*, Mem> k2(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::sort_keys"), n);
+  Kokkos::View<uint32_t*, Mem> v2(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::sort_vals"), n);
+  Kokkos::View<long*, Mem> hist(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::sort_hist"), 256 * nb);
+  Kokkos::View<uint64_t*, Mem> ksrc = keys, kdst = k2;
+  Kokkos::View<uint32_t*, Mem> vsrc = vals, vdst = v2;
+  int passes = 0;
+  for (int shift = 0; shift < key_bits; shift += 8, ++passes) {
+    Kokkos::parallel_for(
+        "weft::sort_count", Kokkos::RangePolicy<Exec>(exec, 0, nb), KOKKOS_LAMBDA(long b) {
+          long c[256];
+          for (int d = 0; d < 256; ++d) c[d] = 0;
+          const long lo = b * kSortBlock, hi = lo + kSortBlock < n ? lo + kSortBlock : n;
+          for (long i = lo; i < hi; ++i) ++c[(ksrc(i) >> shift) & 255u];
+          for (int d = 0; d < 256; ++d) hist(d * nb + b) = c[d];
+        });
+    exclusive_scan(exec, hist, hist);
+    Kokkos::parallel_for(
+        "weft::sort_scatter", Kokkos::RangePolicy<Exec>(exec, 0, nb), KOKKOS_LAMBDA(long b) {
+          long o[256];
+          for (int d = 0; d < 256; ++d) o[d] = hist(d * nb + b);
+          const long lo = b * kSortBlock, hi = lo + kSortBlock < n ? lo + kSortBlock : n;
+          for (long i = lo; i < hi; ++i) {
+            const long dst = o[(ksrc(i) >> shift) & 255u]++;
+            kdst(dst) = ksrc(i);
+            vdst(dst) = vsrc(i);
+          }
+        });
+    auto kt = ksrc; ksrc = kdst; kdst = kt;
+    auto vt = vsrc; vsrc = vdst; vdst = vt;
+  }
+  if (passes % 2 == 1) {  // the sorted data sits in the scratch buffers
+    Kokkos::deep_copy(exec, keys, ksrc);
+    Kokkos::deep_copy(exec, vals, vsrc);
+  }
+}
+
+}  // namespace weft

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Sets everything up, builds the default (openmp) preset and runs the whole test suite.
+#   scripts/test.sh [preset]   (openmp by default; cuda on a machine with an NVIDIA GPU)
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+preset=${1:-openmp}
+bash scripts/build.sh "$preset"
+ctest --preset "$preset" -j "${WEFT_JOBS:-$(nproc)}"

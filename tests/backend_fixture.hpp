@@ -1,0 +1,54 @@
+// Helpers shared by the test bodies; each body uses WEFT_TEST_EXECSPACE and WEFT_TEST_SUITE.
+#pragma once
+#include <Kokkos_Core.hpp>
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace weft::test {
+
+// Copy a host vector into a View of the execution space.
+template <class Exec, class T>
+Kokkos::View<T*, typename Exec::memory_space> to_device(const std::vector<T>& h, const char* label = "test") {
+  Kokkos::View<T*, typename Exec::memory_space> d(std::string(label), h.size());
+  auto m = Kokkos::create_mirror_view(d);
+  for (size_t i = 0; i < h.size(); ++i) m(i) = h[i];
+  Kokkos::deep_copy(d, m);
+  return d;
+}
+
+template <class View>
+std::vector<typename View::non_const_value_type> to_host(const View& d) {
+  auto m = Kokkos::create_mirror_view(d);
+  Kokkos::deep_copy(m, d);
+  std::vector<typename View::non_const_value_type> h(d.extent(0));
+  for (size_t i = 0; i < h.size(); ++i) h[i] = m(i);
+  return h;
+}
+
+inline uint64_t bits(double x) {
+  uint64_t u;
+  std::memcpy(&u, &x, 8);
+  return u;
+}
+
+// Deterministic pseudo-random numbers for test data (no library RNG, same on every platform).
+struct TestRng {
+  uint64_t s;
+  explicit TestRng(uint64_t seed) : s(seed) {}
+  uint64_t next() {
+    s += 0x9E3779B97F4A7C15ull;
+    uint64_t z = s;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  double uniform(double lo = 0, double hi = 1) { return lo + (hi - lo) * double(next() >> 11) * 0x1.0p-53; }
+};
+
+std::string shared_dir();  // ../shared beside the checkout; empty when absent
+
+}  // namespace weft::test
