@@ -8,6 +8,17 @@
 #include <string>
 #include <vector>
 
+// nvcc rejects device lambdas inside private member functions, which gtest's TestBody is; so each TEST body
+// here becomes a free function that the gtest test calls. Test bodies are written as usual.
+#undef TEST
+#define WEFT_CAT_(a, b) a##b
+#define WEFT_CAT(a, b) WEFT_CAT_(a, b)
+#define WEFT_BODY(suite, name) WEFT_CAT(WEFT_CAT(suite, _), WEFT_CAT(name, _body))
+#define TEST(suite, name)                               \
+  void WEFT_BODY(suite, name)();                        \
+  GTEST_TEST(suite, name) { WEFT_BODY(suite, name)(); } \
+  void WEFT_BODY(suite, name)()
+
 namespace weft::test {
 
 // Copy a host vector into a View of the execution space.

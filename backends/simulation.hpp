@@ -1,0 +1,30 @@
+// A simulation on the backend chosen at run time. backends/<backend>.cpp instantiate the solver for
+// their execution space; the rest of weft sees only this interface.
+#pragma once
+#include "backends/backend.hpp"
+#include "core/frame_stats.hpp"
+#include "core/scene.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace weft {
+
+class Simulation {
+ public:
+  virtual ~Simulation() = default;
+  virtual FrameStats step_frame() = 0;            // frame() -> frame() + 1
+  virtual FrameStats measure() const = 0;         // statistics of the current state
+  virtual int frame() const = 0;
+  virtual uint64_t hash_positions() const = 0;    // bitwise hash of the current positions
+  virtual std::vector<Vec3> positions() const = 0;
+  virtual std::vector<Vec3> velocities() const = 0;
+  virtual int colour_count() const = 0;
+  virtual long row_count() const = 0;
+};
+
+// Throws InputError for an invalid scene, std::runtime_error when `b` is not compiled in.
+std::unique_ptr<Simulation> make_simulation(Backend b, const Scene& scene);
+
+}  // namespace weft

@@ -1,0 +1,28 @@
+// Many CCD queries of one kind at once, one thread each.
+#pragma once
+#include "collision/ccd.hpp"
+
+#include <Kokkos_Core.hpp>
+
+namespace weft {
+
+// rows: 8 positions per query, in the argument order of ccd_vertex_face / ccd_edge_edge (the four start
+// positions, then the four end positions); out: one result per query.
+template <class Exec>
+void ccd_batch(const Exec& exec, CcdKind kind, const Kokkos::View<const Vec3*, typename Exec::memory_space>& rows,
+               real ms, const CcdSettings& settings,
+               const Kokkos::View<CcdResult*, typename Exec::memory_space>& out) {
+  const long n = static_cast<long>(rows.extent(0) / 8);
+  const CcdSettings s = settings;
+  Kokkos::parallel_for(
+      "weft::ccd_batch", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long q) {
+        const long r = 8 * q;
+        out(q) = kind == CcdKind::VertexFace
+                     ? ccd_vertex_face(rows(r), rows(r + 1), rows(r + 2), rows(r + 3), rows(r + 4), rows(r + 5),
+                                       rows(r + 6), rows(r + 7), ms, s)
+                     : ccd_edge_edge(rows(r), rows(r + 1), rows(r + 2), rows(r + 3), rows(r + 4), rows(r + 5),
+                                     rows(r + 6), rows(r + 7), ms, s);
+      });
+}
+
+}  // namespace weft

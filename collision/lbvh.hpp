@@ -1,0 +1,367 @@
+// Linear BVH over boxes (Karras 2012, "Maximizing parallelism in the construction of BVHs, octrees, and k-d
+// trees"), built, refitted and queried on the device.
+//
+// Build: Morton codes of the box centres within the bounds of the centres, made unique by the primitive
+// index (collision/morton.hpp), sorted; Karras' construction links the internal nodes from the sorted keys.
+// Refit: node boxes bottom-up from new leaf boxes, same topology. Queries: every overlapping pair, written by
+// count -> exclusive scan -> fill, so the output order depends on the data only, never on the backend.
+//
+// Traversal is stackless: every node stores its rope (the next node in depth-first, left-first order once
+// its subtree is done), so no stack can overflow whatever the tree's depth, and the leaves are met in
+// tree order. (With unique 64-bit keys the depth is at most 65 anyway: prefix lengths grow down the tree.)
+#pragma once
+#include "collision/aabb.hpp"
+#include "collision/morton.hpp"
+#include "core/reduce.hpp"
+#include "core/scan.hpp"
+#include "core/sort.hpp"
+
+#include <Kokkos_Core.hpp>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace weft {
+
+struct IndexPair {
+  int first, second;
+};
+
+// Query predicate that keeps every pair. A predicate is a copyable device functor with
+// `bool operator()(int first, int second) const` (true: keep); it is called twice per pair (count, fill),
+// so it must give the same answer both times.
+struct KeepAllPairs {
+  KOKKOS_INLINE_FUNCTION bool operator()(int, int) const { return true; }
+};
+
+// The tree as kernels see it. With n >= 1 leaves: internal nodes 0..n-2, leaves n-1..2n-2, root 0 (the only
+// leaf when n == 1). Leaf n-1+k holds the k-th primitive in key order.
+template <class Mem>
+struct LbvhNodes {
+  int n = 0;
+  Kokkos::View<const int*, Mem> left;            // per internal node: its first child
+  Kokkos::View<const int*, Mem> rope;            // per node: next node after its subtree, -1 after the last
+  Kokkos::View<const Aabb*, Mem> box;            // per node
+  Kokkos::View<const uint32_t*, Mem> primitive;  // per leaf, in tree order
+
+  // f(j) for every primitive j whose box overlaps q, in tree order.
+  template <class F>
+  KOKKOS_INLINE_FUNCTION void for_each_overlap(const Aabb& q, F&& f) const {
+    const int first_leaf = n - 1;
+    int x = n > 0 ? 0 : -1;
+    while (x >= 0) {
+      if (!overlaps(box(x), q)) {
+        x = rope(x);  // skip the subtree
+      } else if (x < first_leaf) {
+        x = left(x);
+      } else {
+        f(static_cast<int>(primitive(x - first_leaf)));
+        x = rope(x);
+      }
+    }
+  }
+};
+
+namespace lbvh_detail {
+
+// Karras' delta: common prefix length of keys i and j, -1 when j is outside [0, n).
+template <class KeyView>
+KOKKOS_INLINE_FUNCTION int delta(const KeyView& keys, long n, long i, long j) {
+  return j < 0 || j >= n ? -1 : clz64(keys(i) ^ keys(j));
+}
+
+// Bounds of the box centres, folded in fixed blocks of kReduceBlock (the shape depends on n only).
+template <class Exec>
+void centre_bounds(const Exec& exec, Kokkos::View<const Aabb*, typename Exec::memory_space> boxes,
+                   Kokkos::View<Aabb, typename Exec::memory_space> out) {
+  using Mem = typename Exec::memory_space;
+  const long n = static_cast<long>(boxes.extent(0));
+  long len = (n + kReduceBlock - 1) / kReduceBlock;
+  Kokkos::View<Aabb*, Mem> partial(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::lbvh_bounds"), len);
+  Kokkos::parallel_for(
+      "weft::lbvh_centre_bounds", Kokkos::RangePolicy<Exec>(exec, 0, len), KOKKOS_LAMBDA(long b) {
+        const long lo = b * kReduceBlock, hi = lo + kReduceBlock < n ? lo + kReduceBlock : n;
+        Aabb acc = empty_aabb();
+        for (long i = lo; i < hi; ++i) acc = expand(acc, centre(boxes(i)));
+        partial(b) = acc;
+      });
+  while (len > 1) {
+    const long next_len = (len + kReduceBlock - 1) / kReduceBlock;
+    Kokkos::View<Aabb*, Mem> next(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::lbvh_bounds"), next_len);
+    const auto in = partial;
+    const long in_len = len;
+    Kokkos::parallel_for(
+        "weft::lbvh_merge_bounds", Kokkos::RangePolicy<Exec>(exec, 0, next_len), KOKKOS_LAMBDA(long b) {
+          const long lo = b * kReduceBlock, hi = lo + kReduceBlock < in_len ? lo + kReduceBlock : in_len;
+          Aabb acc = in(lo);
+          for (long i = lo + 1; i < hi; ++i) acc = merge(acc, in(i));
+          next(b) = acc;
+        });
+    partial = next;
+    len = next_len;
+  }
+  Kokkos::parallel_for(
+      "weft::lbvh_bounds_out", Kokkos::RangePolicy<Exec>(exec, 0, 1), KOKKOS_LAMBDA(int) { out() = partial(0); });
+}
+
+// Links the nodes from n >= 1 sorted unique keys: children, parents and ropes.
+template <class Exec>
+void link_nodes(const Exec& exec, Kokkos::View<const uint64_t*, typename Exec::memory_space> keys,
+                Kokkos::View<int*, typename Exec::memory_space> left,
+                Kokkos::View<int*, typename Exec::memory_space> right,
+                Kokkos::View<int*, typename Exec::memory_space> parent,
+                Kokkos::View<int*, typename Exec::memory_space> rope) {
+  const long n = static_cast<long>(keys.extent(0));
+  const long first_leaf = n - 1;
+  // Internal node i: its key range [min(i, j), max(i, j)] and split gamma, as in Karras' paper.
+  Kokkos::parallel_for(
+      "weft::lbvh_link", Kokkos::RangePolicy<Exec>(exec, 0, n - 1), KOKKOS_LAMBDA(long i) {
+        const long d = delta(keys, n, i, i + 1) > delta(keys, n, i, i - 1) ? 1 : -1;
+        const int delta_min = delta(keys, n, i, i - d);
+        long len_max = 2;
+        while (delta(keys, n, i, i + len_max * d) > delta_min) len_max *= 2;
+        long len = 0;
+        for (long t = len_max / 2; t >= 1; t /= 2)
+          if (delta(keys, n, i, i + (len + t) * d) > delta_min) len += t;
+        const long j = i + len * d;
+        const int delta_node = delta(keys, n, i, j);
+        long s = 0, t = len;
+        do {
+          t = (t + 1) / 2;
+          if (delta(keys, n, i, i + (s + t) * d) > delta_node) s += t;
+        } while (t > 1);
+        const long gamma = i + s * d + (d < 0 ? -1 : 0);
+        const long lo = i < j ? i : j, hi = i < j ? j : i;
+        const int l = static_cast<int>(lo == gamma ? first_leaf + gamma : gamma);
+        const int r = static_cast<int>(hi == gamma + 1 ? first_leaf + gamma + 1 : gamma + 1);
+        left(i) = l;
+        right(i) = r;
+        parent(l) = static_cast<int>(i);
+        parent(r) = static_cast<int>(i);
+        // A subtree whose key range ends at gamma is followed by the right child of the node split at gamma;
+        // leaf gamma is such a subtree. Internal nodes keep their range end until the next kernel.
+        rope(first_leaf + gamma) = r;
+        rope(i) = static_cast<int>(hi);
+      });
+  // An internal node's subtree ends where its last leaf's does; nothing follows the last leaf.
+  Kokkos::parallel_for(
+      "weft::lbvh_ropes", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long k) {
+        if (k < first_leaf) {
+          const long last = rope(k);
+          rope(k) = last == first_leaf ? -1 : rope(first_leaf + last);
+        } else {
+          rope(first_leaf + first_leaf) = -1;
+        }
+        if (k == 0) parent(0) = -1;
+      });
+}
+
+// Grow v (contents dropped) to hold at least `size` items, with some slack so counts that creep up from
+// call to call do not reallocate every time.
+template <class View>
+void reserve(View& v, long size, const char* label) {
+  if (static_cast<long>(v.extent(0)) >= size) return;
+  v = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, v.label().empty() ? std::string(label) : v.label()),
+           size + size / 8);
+}
+
+// v resized to exactly `size` (contents dropped) unless it already is.
+template <class View>
+void resize_exact(View& v, long size, const char* label) {
+  if (static_cast<long>(v.extent(0)) != size)
+    v = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(label)), size);
+}
+
+}  // namespace lbvh_detail
+
+// An LBVH and its buffers, reused from call to call: build() when the primitives change, refit() when only
+// their boxes move, then any number of queries. Pair queries return the pair count and write the pairs to
+// pairs[0, count), growing `pairs` when it is too small (never dropping a pair).
+template <class Exec>
+class Lbvh {
+ public:
+  using Mem = typename Exec::memory_space;
+  using BoxView = Kokkos::View<const Aabb*, Mem>;
+  using PairView = Kokkos::View<IndexPair*, Mem>;
+
+  explicit Lbvh(const Exec& exec = Exec()) : exec_(exec) {}
+
+  const Exec& execution_space() const { return exec_; }
+  long size() const { return n_; }
+  LbvhNodes<Mem> nodes() const { return {static_cast<int>(n_), left_, rope_, box_, primitive_}; }
+  // Primitive of each leaf in tree order: the order in which queries meet a query's overlapping primitives.
+  Kokkos::View<const uint32_t*, Mem> leaf_primitives() const { return primitive_; }
+
+  // A new tree over boxes(0..n), n < 2^31.
+  void build(BoxView boxes) {
+    const long n = static_cast<long>(boxes.extent(0));
+    if (n >= (1L << 31) - 1) throw std::length_error("weft::Lbvh: too many primitives");
+    n_ = n;
+    const long internal = n > 0 ? n - 1 : 0, nodes = n > 0 ? 2 * n - 1 : 0;
+    lbvh_detail::resize_exact(keys_, n, "weft::lbvh_keys");
+    lbvh_detail::resize_exact(primitive_, n, "weft::lbvh_primitive");
+    lbvh_detail::resize_exact(left_, internal, "weft::lbvh_left");
+    lbvh_detail::resize_exact(right_, internal, "weft::lbvh_right");
+    lbvh_detail::resize_exact(visits_, internal, "weft::lbvh_visits");
+    lbvh_detail::resize_exact(parent_, nodes, "weft::lbvh_parent");
+    lbvh_detail::resize_exact(rope_, nodes, "weft::lbvh_rope");
+    lbvh_detail::resize_exact(box_, nodes, "weft::lbvh_box");
+    if (n == 0) return;
+
+    Kokkos::View<Aabb, Mem> bounds("weft::lbvh_scene");
+    lbvh_detail::centre_bounds(exec_, boxes, bounds);
+    const auto keys = keys_;
+    const auto primitive = primitive_;
+    Kokkos::parallel_for(
+        "weft::lbvh_codes", Kokkos::RangePolicy<Exec>(exec_, 0, n), KOKKOS_LAMBDA(long i) {
+          keys(i) = morton30(centre(boxes(i)), bounds());
+          primitive(i) = static_cast<uint32_t>(i);
+        });
+    // The sort is stable and starts in index order, so sorting the codes alone gives the order of the unique
+    // keys (code, index) at half the passes.
+    radix_sort_pairs(exec_, keys, primitive, 32);
+    Kokkos::parallel_for(
+        "weft::lbvh_keys", Kokkos::RangePolicy<Exec>(exec_, 0, n),
+        KOKKOS_LAMBDA(long k) { keys(k) = morton_key(static_cast<uint32_t>(keys(k)), primitive(k)); });
+    lbvh_detail::link_nodes(exec_, Kokkos::View<const uint64_t*, Mem>(keys_), left_, right_, parent_, rope_);
+    refit(boxes);
+  }
+
+  // New boxes for the same primitives (boxes.extent(0) == size()). Each leaf walks up; at every node the
+  // second child to finish (an integer atomic count) merges both children, so each node is merged once, in
+  // a fixed order: the result is exact and the same on every backend.
+  void refit(BoxView boxes) {
+    const long n = n_;
+    if (static_cast<long>(boxes.extent(0)) != n) throw std::invalid_argument("weft::Lbvh::refit: box count changed");
+    if (n == 0) return;
+    Kokkos::deep_copy(exec_, visits_, 0);
+    const auto primitive = primitive_;
+    const auto left = left_;
+    const auto right = right_;
+    const auto parent = parent_;
+    const auto box = box_;
+    const auto visits = visits_;
+    Kokkos::parallel_for(
+        "weft::lbvh_refit", Kokkos::RangePolicy<Exec>(exec_, 0, n), KOKKOS_LAMBDA(long k) {
+          int x = static_cast<int>(n - 1 + k);
+          box(x) = boxes(primitive(k));
+          while (true) {
+            const int p = parent(x);
+            if (p < 0) break;
+            Kokkos::memory_fence();  // publish box(x) before the count that lets the sibling's thread read it
+            if (Kokkos::atomic_fetch_add(&visits(p), 1) == 0) break;  // the sibling's thread finishes p
+            Kokkos::memory_fence();  // and see the sibling's box
+            box(p) = merge(box(left(p)), box(right(p)));
+            x = p;
+          }
+        });
+  }
+
+  // Pairs (i, j), i < j, of primitives whose boxes overlap and that pred(i, j) keeps; sorted by i, then by
+  // j in tree order.
+  template <class Pred>
+  long query_self(Pred pred, PairView& pairs) {
+    const long n = n_;
+    lbvh_detail::reserve(offsets_, n, "weft::lbvh_offsets");
+    const auto offsets = offsets_;
+    const LbvhNodes<Mem> tree = nodes();
+    // Threads go through the queries in tree order (neighbours traverse alike) but count at index i.
+    Kokkos::parallel_for(
+        "weft::lbvh_self_count", Kokkos::RangePolicy<Exec>(exec_, 0, n), KOKKOS_LAMBDA(long k) {
+          const int i = static_cast<int>(tree.primitive(k));
+          long c = 0;
+          tree.for_each_overlap(tree.box(n - 1 + k), [&](int j) {
+            if (i < j && pred(i, j)) ++c;
+          });
+          offsets(i) = c;
+        });
+    const long total = exclusive_scan(exec_, Kokkos::subview(offsets, std::make_pair(0L, n)), offsets);
+    lbvh_detail::reserve(pairs, total, "weft::lbvh_pairs");
+    const auto out = pairs;
+    Kokkos::parallel_for(
+        "weft::lbvh_self_fill", Kokkos::RangePolicy<Exec>(exec_, 0, n), KOKKOS_LAMBDA(long k) {
+          const int i = static_cast<int>(tree.primitive(k));
+          long o = offsets(i);
+          tree.for_each_overlap(tree.box(n - 1 + k), [&](int j) {
+            if (i < j && pred(i, j)) out(o++) = IndexPair{i, j};
+          });
+        });
+    return total;
+  }
+
+  // Pairs (q, j) of query boxes q and primitives j whose boxes overlap and that pred(q, j) keeps; sorted by
+  // q, then by j in tree order.
+  template <class Pred>
+  long query(BoxView queries, Pred pred, PairView& pairs) {
+    const long m = static_cast<long>(queries.extent(0));
+    lbvh_detail::reserve(offsets_, m, "weft::lbvh_offsets");
+    const auto offsets = offsets_;
+    const LbvhNodes<Mem> tree = nodes();
+    Kokkos::parallel_for(
+        "weft::lbvh_query_count", Kokkos::RangePolicy<Exec>(exec_, 0, m), KOKKOS_LAMBDA(long q) {
+          long c = 0;
+          tree.for_each_overlap(queries(q), [&](int j) {
+            if (pred(static_cast<int>(q), j)) ++c;
+          });
+          offsets(q) = c;
+        });
+    const long total = exclusive_scan(exec_, Kokkos::subview(offsets, std::make_pair(0L, m)), offsets);
+    lbvh_detail::reserve(pairs, total, "weft::lbvh_pairs");
+    const auto out = pairs;
+    Kokkos::parallel_for(
+        "weft::lbvh_query_fill", Kokkos::RangePolicy<Exec>(exec_, 0, m), KOKKOS_LAMBDA(long q) {
+          long o = offsets(q);
+          tree.for_each_overlap(queries(q), [&](int j) {
+            if (pred(static_cast<int>(q), j)) out(o++) = IndexPair{static_cast<int>(q), j};
+          });
+        });
+    return total;
+  }
+
+  // The number of pairs query_self would return, in one traversal and without writing them.
+  template <class Pred>
+  long count_self(Pred pred) const {
+    const long n = n_;
+    const LbvhNodes<Mem> tree = nodes();
+    long total = 0;
+    Kokkos::parallel_reduce(
+        "weft::lbvh_self_total", Kokkos::RangePolicy<Exec>(exec_, 0, n),
+        KOKKOS_LAMBDA(long k, long& acc) {
+          const int i = static_cast<int>(tree.primitive(k));
+          tree.for_each_overlap(tree.box(n - 1 + k), [&](int j) {
+            if (i < j && pred(i, j)) ++acc;
+          });
+        },
+        total);
+    return total;
+  }
+
+  // The number of pairs query would return.
+  template <class Pred>
+  long count(BoxView queries, Pred pred) const {
+    const LbvhNodes<Mem> tree = nodes();
+    long total = 0;
+    Kokkos::parallel_reduce(
+        "weft::lbvh_query_total", Kokkos::RangePolicy<Exec>(exec_, 0, queries.extent(0)),
+        KOKKOS_LAMBDA(long q, long& acc) {
+          tree.for_each_overlap(queries(q), [&](int j) {
+            if (pred(static_cast<int>(q), j)) ++acc;
+          });
+        },
+        total);
+    return total;
+  }
+
+ private:
+  Exec exec_;
+  long n_ = 0;
+  Kokkos::View<uint64_t*, Mem> keys_;      // sorted unique keys
+  Kokkos::View<uint32_t*, Mem> primitive_;  // per leaf
+  Kokkos::View<int*, Mem> left_, right_;    // per internal node
+  Kokkos::View<int*, Mem> visits_;          // per internal node, refit's arrival counts
+  Kokkos::View<int*, Mem> parent_, rope_;   // per node
+  Kokkos::View<Aabb*, Mem> box_;            // per node
+  Kokkos::View<long*, Mem> offsets_;        // per query, first output slot
+};
+
+}  // namespace weft

@@ -1,0 +1,45 @@
+// The XPBD update shared by every constraint kind (see docs/solver.md and the Vellum spec):
+//   alpha~  = compliance / h^2            compliance = 1 / stiffness
+//   gamma   = dampingratio / h
+//   dlambda = (-C - alpha~ lambda - gamma sum_i g_i.(x_i - x_i^start)) / ((1 + gamma) sum_i w_i |g_i|^2 + alpha~)
+//   x_i    += w_i g_i dlambda
+#pragma once
+#include "core/vec.hpp"
+
+namespace weft {
+
+// Per-constraint material, as stored: compliances (1/stiffness; 0 = rigid) and Vellum's damping ratio.
+struct XpbdMaterial {
+  real compliance = 0;           // used while C >= 0
+  real compress_compliance = 0;  // used while C < 0 (Vellum's compressstiffness)
+  real damping_ratio = 0;
+};
+
+// Vellum stiffness -> compliance; compressstiffness -1 means "same as stiffness". k = 0 is never stored
+// (those constraints are skipped when built).
+inline XpbdMaterial xpbd_material(real stiffness, real compress_stiffness, real damping_ratio) {
+  XpbdMaterial m;
+  m.compliance = 1 / stiffness;
+  m.compress_compliance = compress_stiffness < 0 ? m.compliance : 1 / compress_stiffness;
+  m.damping_ratio = damping_ratio;
+  return m;
+}
+
+// dlambda for one constraint with N particles. g: gradients; w: inverse masses; dx: x_i - x_i^start.
+// Returns 0 when no particle can move.
+template <int N>
+KOKKOS_INLINE_FUNCTION real xpbd_delta_lambda(real C, const Vec3 (&g)[N], const real (&w)[N], const Vec3 (&dx)[N],
+                                              real lambda, const XpbdMaterial& m, real h) {
+  const real alpha = (C < 0 ? m.compress_compliance : m.compliance) / (h * h);
+  const real gamma = m.damping_ratio / h;
+  real wg = 0, gdx = 0;
+  for (int i = 0; i < N; ++i) {
+    wg += w[i] * dot(g[i], g[i]);
+    gdx += dot(g[i], dx[i]);
+  }
+  const real denom = (1 + gamma) * wg + alpha;
+  if (!(wg > 0) || !(denom > 0)) return 0;
+  return (-C - alpha * lambda - gamma * gdx) / denom;
+}
+
+}  // namespace weft

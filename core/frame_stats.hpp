@@ -1,0 +1,20 @@
+// Per-frame figures a run reports (and tests assert on).
+#pragma once
+#include "core/real.hpp"
+
+#include <cstdint>
+
+namespace weft {
+
+struct FrameStats {
+  int frame = 0;
+  real kinetic_energy = 0;  // J, over points that move
+  real max_speed = 0;       // m/s
+  real max_strain = 0;      // max |length / rest - 1| over distance constraints
+  real rms_speed = 0;       // m/s, over points that move
+  long non_finite = 0;      // points whose position is NaN or Inf
+  long contacts = 0;        // filled by the collision stage
+  double seconds = 0;       // wall time of the frame
+};
+
+}  // namespace weft

@@ -1,0 +1,114 @@
+#include "core/scene.hpp"
+
+#include "core/error.hpp"
+#include "core/topology.hpp"
+
+#include <sstream>
+
+namespace weft {
+namespace {
+
+[[noreturn]] void fail(const Scene& s, const std::string& what) {
+  throw InputError(s.name + ": " + what);
+}
+
+std::string vec_str(Vec3 v) {
+  std::ostringstream o;
+  o << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+  return o.str();
+}
+
+void check_index(const Scene& s, long i, size_t n, const std::string& element) {
+  if (i < 0 || size_t(i) >= n)
+    fail(s, element + " refers to point " + std::to_string(i) + ", out of range [0, " + std::to_string(n) + ")");
+}
+
+}  // namespace
+
+void validate_scene(const Scene& s) {
+  const ClothPoints& p = s.points;
+  const size_t n = p.size();
+  auto same = [&](size_t k, const char* what) {
+    if (k != n) fail(s, std::string("point attribute '") + what + "' has " + std::to_string(k) + " values for " +
+                            std::to_string(n) + " points");
+  };
+  same(p.velocity.size(), "v"); same(p.mass.size(), "mass"); same(p.thickness.size(), "thickness");
+  same(p.friction.size(), "friction"); same(p.dynamic_friction.size(), "dynamicfriction");
+  same(p.layer.size(), "layer"); same(p.stopped.size(), "stopped"); same(p.piece.size(), "piece");
+  for (size_t i = 0; i < n; ++i) {
+    if (!isfinite_(p.position[i])) fail(s, "point " + std::to_string(i) + " has a non-finite position " + vec_str(p.position[i]));
+    if (!isfinite_(p.velocity[i])) fail(s, "point " + std::to_string(i) + " has a non-finite velocity " + vec_str(p.velocity[i]));
+    if (!isfinite_(p.mass[i]) || p.mass[i] < 0) fail(s, "point " + std::to_string(i) + " has an invalid mass " + std::to_string(p.mass[i]));
+    if (!isfinite_(p.thickness[i]) || p.thickness[i] < 0)
+      fail(s, "point " + std::to_string(i) + " has an invalid thickness " + std::to_string(p.thickness[i]));
+  }
+  for (size_t t = 0; t < s.triangles.size(); ++t) {
+    const auto& tri = s.triangles[t];
+    for (int k = 0; k < 3; ++k) check_index(s, tri[k], n, "triangle " + std::to_string(t));
+    if (triangle_area(p.position[tri[0]], p.position[tri[1]], p.position[tri[2]]) <= 0)
+      fail(s, "triangle " + std::to_string(t) + " (points " + std::to_string(tri[0]) + ", " + std::to_string(tri[1]) +
+                  ", " + std::to_string(tri[2]) + ") has zero area");
+  }
+  const Constraints& c = s.constraints;
+  for (size_t i = 0; i < c.distance.size(); ++i)
+    for (int q : {c.distance[i].a, c.distance[i].b}) check_index(s, q, n, "distance constraint " + std::to_string(i));
+  for (size_t i = 0; i < c.bend.size(); ++i)
+    for (int q : {c.bend[i].o0, c.bend[i].o1, c.bend[i].e0, c.bend[i].e1}) check_index(s, q, n, "bend constraint " + std::to_string(i));
+  for (size_t i = 0; i < c.triarap.size(); ++i)
+    for (int q : {c.triarap[i].p0, c.triarap[i].p1, c.triarap[i].p2}) check_index(s, q, n, "triarap constraint " + std::to_string(i));
+  for (size_t i = 0; i < c.fem.size(); ++i)
+    for (int q : {c.fem[i].p0, c.fem[i].p1, c.fem[i].p2}) check_index(s, q, n, "fem constraint " + std::to_string(i));
+  const size_t ntargets = s.pin_targets.empty() ? 0 : s.pin_targets.frames[0].size();
+  for (size_t i = 0; i < c.pin.size(); ++i) {
+    check_index(s, c.pin[i].p, n, "pin constraint " + std::to_string(i));
+    if (c.pin[i].target >= long(ntargets)) fail(s, "pin constraint " + std::to_string(i) + " refers to missing target " + std::to_string(c.pin[i].target));
+    if (!isfinite_(c.pin[i].goal)) fail(s, "pin constraint " + std::to_string(i) + " has a non-finite goal");
+  }
+  for (size_t i = 0; i < c.ptprim.size(); ++i) {
+    const auto& q = c.ptprim[i];
+    check_index(s, q.p, n, "ptprim constraint " + std::to_string(i));
+    if (q.nt < 2 || q.nt > 4) fail(s, "ptprim constraint " + std::to_string(i) + " has " + std::to_string(q.nt) + " target points (2 to 4)");
+    for (int k = 0; k < q.nt; ++k) check_index(s, q.t[k], n, "ptprim constraint " + std::to_string(i));
+  }
+  for (size_t i = 0; i < c.attach.size(); ++i) {
+    const auto& a = c.attach[i];
+    check_index(s, a.p, n, "attach constraint " + std::to_string(i));
+    if (a.collider < 0 || size_t(a.collider) >= s.colliders.size())
+      fail(s, "attach constraint " + std::to_string(i) + " refers to missing collider " + std::to_string(a.collider));
+    if (a.tri < 0 || size_t(a.tri) >= s.colliders[a.collider].triangles.size())
+      fail(s, "attach constraint " + std::to_string(i) + " refers to missing collider triangle " + std::to_string(a.tri));
+  }
+  if (s.kinematic_point.size() != s.kinematic_target.size()) fail(s, "kinematic points and targets differ in count");
+  for (size_t i = 0; i < s.kinematic_point.size(); ++i) {
+    check_index(s, s.kinematic_point[i], n, "kinematic pin " + std::to_string(i));
+    if (s.kinematic_target[i] < 0 || size_t(s.kinematic_target[i]) >= ntargets)
+      fail(s, "kinematic pin " + std::to_string(i) + " refers to missing target " + std::to_string(s.kinematic_target[i]));
+  }
+  for (size_t f = 0; f < s.pin_targets.frames.size(); ++f) {
+    if (s.pin_targets.frames[f].size() != ntargets) fail(s, "pin target frame " + std::to_string(f) + " has a different target count");
+    for (size_t k = 0; k < ntargets; ++k)
+      if (!isfinite_(s.pin_targets.frames[f][k])) fail(s, "pin target " + std::to_string(k) + " is not finite at frame " + std::to_string(f));
+  }
+  for (const Collider& col : s.colliders) {
+    if (col.motion.empty()) fail(s, "collider '" + col.name + "' has no positions");
+    const size_t nv = col.motion.frames[0].size();
+    for (size_t f = 0; f < col.motion.frames.size(); ++f) {
+      if (col.motion.frames[f].size() != nv)
+        fail(s, "collider '" + col.name + "' changes its point count at frame " + std::to_string(f) + " (" +
+                    std::to_string(col.motion.frames[f].size()) + " instead of " + std::to_string(nv) + ")");
+      for (size_t k = 0; k < nv; ++k)
+        if (!isfinite_(col.motion.frames[f][k])) fail(s, "collider '" + col.name + "' point " + std::to_string(k) + " is not finite at frame " + std::to_string(f));
+    }
+    for (size_t t = 0; t < col.triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k)
+        if (col.triangles[t][k] < 0 || size_t(col.triangles[t][k]) >= nv)
+          fail(s, "collider '" + col.name + "' triangle " + std::to_string(t) + " refers to point " +
+                      std::to_string(col.triangles[t][k]) + ", out of range [0, " + std::to_string(nv) + ")");
+  }
+  const SolverSettings& st = s.settings;
+  if (!(st.fps > 0) || st.substeps < 1 || st.iterations < 0 || st.collision_passes < 0 || st.smoothing_iterations < 0 ||
+      st.frame_end < st.frame_start)
+    fail(s, "invalid solver settings (fps > 0, substeps >= 1, iterations/passes >= 0, frame_end >= frame_start)");
+}
+
+}  // namespace weft

@@ -1,0 +1,97 @@
+// The host-side description of a simulation: cloth points and triangles, constraints with Vellum
+// semantics, animated targets and colliders, solver settings. Built by scene generators and readers,
+// validated by validate_scene(), then uploaded once to the device by the solver.
+#pragma once
+#include "constraints/xpbd.hpp"
+#include "core/vec.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace weft {
+
+struct SolverSettings {
+  real fps = 24;
+  int frame_start = 1, frame_end = 48;  // inclusive; positions at frame_start are the scene's initial state
+  int substeps = 10;                     // per frame
+  int iterations = 20;                   // Gauss-Seidel constraint iterations per substep
+  int collision_passes = 2;              // per substep, spread evenly over the iterations
+  int smoothing_iterations = 0;          // Jacobi passes after Gauss-Seidel (Vellum "smoothing iterations")
+  Vec3 gravity{0, -9.81, 0};             // m/s^2
+  Vec3 wind{0, 0, 0};                    // constant acceleration, m/s^2
+  real velocity_damping = 0;             // 1/s: v <- max(0, 1 - damping h) v + h a each substep
+  bool impact_zone_smoothing = true;     // used by the collision stage
+};
+
+// Per-point data of all cloth pieces, welded into one point set.
+struct ClothPoints {
+  std::vector<Vec3> position, velocity;
+  std::vector<real> mass;       // kg; 0 = infinite (a permanent pin)
+  std::vector<real> thickness;  // m, collision radius (Vellum pscale)
+  std::vector<real> friction, dynamic_friction;
+  std::vector<int> layer;       // garment layer, higher is outer
+  std::vector<int> stopped;     // bit 0: the point does not move
+  std::vector<int> piece;       // which cloth piece
+  size_t size() const { return position.size(); }
+};
+
+// An animated position source: `frames[f][k]` is target k at frame frame_start + f; positions between
+// frames are interpolated linearly, and the last frame is held.
+struct Animation {
+  std::vector<std::vector<Vec3>> frames;
+  bool empty() const { return frames.empty(); }
+};
+
+struct Collider {
+  std::string name;
+  std::vector<std::array<int, 3>> triangles;
+  Animation motion;  // vertex positions per frame (one frame = static)
+  real thickness = 0.0;
+  real friction = 0.5;
+};
+
+// Constraints, one table per kind, with Vellum's rest data.
+struct DistanceConstraint { int a, b; real rest; XpbdMaterial m; };
+struct BendConstraint { int o0, o1, e0, e1; real rest_rad; XpbdMaterial m; };
+struct TriarapConstraint { int p0, p1, p2; real dm_inv[4]; real area; bool normalized; XpbdMaterial m; };
+// Pin p to a goal: a fixed point, or target `target` of Scene::pin_targets when >= 0.
+struct PinConstraint { int p; Vec3 goal; int target; real rest; XpbdMaterial m; };
+// Attach p to collider triangle `tri` at barycentric (u, v): goal = (1-u-v) t0 + u t1 + v t2.
+struct AttachConstraint { int p, collider, tri; real u, v, rest; XpbdMaterial m; };
+// Point-to-primitive stitch: |sum w_i t_i - p| - rest over nt = 2..4 target points.
+struct PtPrimConstraint { int p; int t[4]; real w[4]; int nt; real rest; XpbdMaterial m; };
+// FEM membrane from Young's modulus, Poisson's ratio and fabric thickness (compliances per triangle).
+struct FemConstraint { int p0, p1, p2; real dm_inv[4]; real area; real dev_compliance, hyd_compliance, gamma;
+                       real damping_ratio; };
+
+struct Constraints {
+  std::vector<DistanceConstraint> distance;  // distance along edges, and point-to-point stitches
+  std::vector<BendConstraint> bend;
+  std::vector<TriarapConstraint> triarap;
+  std::vector<PinConstraint> pin;
+  std::vector<AttachConstraint> attach;
+  std::vector<PtPrimConstraint> ptprim;
+  std::vector<FemConstraint> fem;
+  size_t size() const {
+    return distance.size() + bend.size() + triarap.size() + pin.size() + attach.size() + ptprim.size() + fem.size();
+  }
+};
+
+struct Scene {
+  std::string name;                               // for messages: file name or builtin:NAME
+  ClothPoints points;
+  std::vector<std::array<int, 3>> triangles;      // cloth triangles (all pieces)
+  Constraints constraints;
+  Animation pin_targets;                          // goals of animated pins
+  std::vector<int> kinematic_point, kinematic_target;  // hard pins that follow pin_targets each substep
+  std::vector<Collider> colliders;
+  SolverSettings settings;
+  bool needs_collisions = false;                  // the scene makes no sense without collision handling
+};
+
+// Throws InputError naming the scene and the element: out-of-range indices, NaN/Inf, zero-area triangles,
+// negative mass or thickness, inconsistent animation frames, bad settings.
+void validate_scene(const Scene& s);
+
+}  // namespace weft

@@ -1,0 +1,333 @@
+// The XPBD frame loop (see docs/solver.md). A frame = substeps x (predict; iterations of multi-colour
+// Gauss-Seidel over every constraint row, with collision passes spread among them; Jacobi smoothing;
+// velocity update). Everything stays on the device; a frame copies back only a few statistics.
+#pragma once
+#include "constraints/build_rows.hpp"
+#include "core/colouring.hpp"
+#include "core/frame_stats.hpp"
+#include "core/hash.hpp"
+#include "core/reduce.hpp"
+#include "core/scene.hpp"
+#include "core/solver_state.hpp"
+
+#include <Kokkos_Core.hpp>
+#include <chrono>
+#include <memory>
+#include <vector>
+
+namespace weft {
+
+namespace kernels {
+
+// Goals at time t (in frames since the first frame): linear between stored frames, last frame held.
+template <class Exec, class FramesView, class OutView>
+void interpolate_animation(const Exec& exec, const FramesView& frames, const OutView& out, real t) {
+  const long nf = long(frames.extent(0)), n = long(frames.extent(1));
+  if (nf == 0 || n == 0) return;
+  long f0 = long(t);
+  real a = t - real(f0);
+  if (f0 >= nf - 1) { f0 = nf - 1; a = 0; }
+  const long f1 = f0 + 1 < nf ? f0 + 1 : f0;
+  Kokkos::parallel_for("weft::interpolate_animation", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
+    out(i) = frames(f0, i) + a * (frames(f1, i) - frames(f0, i));
+  });
+}
+
+template <class Exec, class Mem>
+void predict(const Exec& exec, const SolverState<Exec>& s, Vec3 accel, real damping, real h) {
+  auto x = s.x, xs = s.x_start, v = s.v;
+  auto w = s.w;
+  const real keep = max_(real(0), 1 - damping * h);
+  Kokkos::parallel_for("weft::predict", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)), KOKKOS_LAMBDA(long i) {
+    xs(i) = x(i);
+    if (w(i) > 0) {
+      const Vec3 vi = keep * v(i) + h * accel;  // damping never weakens gravity at rest
+      v(i) = vi;
+      x(i) = x(i) + h * vi;
+    }
+  });
+}
+
+template <class Exec, class IView, class XView>
+void follow_targets(const Exec& exec, const IView& point, const IView& target, const XView& goals, const XView& x) {
+  Kokkos::parallel_for("weft::kinematic", Kokkos::RangePolicy<Exec>(exec, 0, point.extent(0)),
+                       KOKKOS_LAMBDA(long k) { x(point(k)) = goals(target(k)); });
+}
+
+template <class Exec>
+void update_velocity(const Exec& exec, const SolverState<Exec>& s, real h) {
+  auto x = s.x, xs = s.x_start, v = s.v;
+  Kokkos::parallel_for("weft::velocity", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
+                       KOKKOS_LAMBDA(long i) { v(i) = (x(i) - xs(i)) / h; });
+}
+
+}  // namespace kernels
+
+template <class Exec>
+class Solver {
+ public:
+  using Mem = typename Exec::memory_space;
+  template <class T>
+  using View = Kokkos::View<T, Mem>;
+
+  explicit Solver(const Scene& scene) : st_(scene.settings), frame_(scene.settings.frame_start) {
+    validate_scene(scene);
+    upload_points(scene);
+    upload_animation(scene);
+    upload_rows(scene);
+    state_.exec = exec_;
+  }
+
+  const SolverState<Exec>& state() const { return state_; }
+  const SolverSettings& settings() const { return st_; }
+  int frame() const { return frame_; }
+  int colour_count() const { return int(colour_offset_.size()) - 1; }
+  long row_count() const { return long(rows_.extent(0)); }
+  void set_collision_stage(std::unique_ptr<CollisionStage<Exec>> c) { collision_ = std::move(c); }
+
+  // Advances from frame() to frame() + 1.
+  FrameStats step_frame() {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int s = 0; s < st_.substeps; ++s) substep(s);
+    ++frame_;
+    FrameStats fs = measure();
+    exec_.fence();
+    fs.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return fs;
+  }
+
+  uint64_t hash_positions() const { return hash_view(exec_, state_.x); }
+
+  std::vector<Vec3> positions() const { return to_host(state_.x); }
+  std::vector<Vec3> velocities() const { return to_host(state_.v); }
+
+  // Statistics of the current state.
+  FrameStats measure() const {
+    FrameStats fs;
+    fs.frame = frame_;
+    const long n = long(state_.x.extent(0));
+    auto x = state_.x, v = state_.v;
+    auto w = state_.w;
+    auto mass = mass_;
+    auto e = scratch_;
+    Kokkos::parallel_for("weft::stats_energy", Kokkos::RangePolicy<Exec>(exec_, 0, n), KOKKOS_LAMBDA(long i) {
+      e(i) = w(i) > 0 ? 0.5 * mass(i) * dot(v(i), v(i)) : 0.0;
+    });
+    fs.kinetic_energy = reduce_fixed(exec_, e, SumOp{});
+    Kokkos::parallel_for("weft::stats_speed2", Kokkos::RangePolicy<Exec>(exec_, 0, n),
+                         KOKKOS_LAMBDA(long i) { e(i) = w(i) > 0 ? dot(v(i), v(i)) : 0.0; });
+    fs.max_speed = sqrt_(reduce_fixed(exec_, e, MaxOp{}));
+    const real sum_v2 = reduce_fixed(exec_, e, SumOp{});
+    fs.rms_speed = movable_ > 0 ? sqrt_(sum_v2 / real(movable_)) : 0.0;
+    auto rows = rows_;
+    const long nr = long(rows.extent(0));
+    auto strain = row_scratch_;
+    Kokkos::parallel_for("weft::stats_strain", Kokkos::RangePolicy<Exec>(exec_, 0, nr), KOKKOS_LAMBDA(long r) {
+      const Row& row = rows(r);
+      strain(r) = row.kind == kRowDistance && row.rest > 0
+                      ? abs_(norm(x(row.idx[1]) - x(row.idx[0])) / row.rest - 1)
+                      : 0.0;
+    });
+    fs.max_strain = reduce_fixed(exec_, strain, MaxOp{});
+    long bad = 0;
+    Kokkos::parallel_reduce(
+        "weft::stats_finite", Kokkos::RangePolicy<Exec>(exec_, 0, n),
+        KOKKOS_LAMBDA(long i, long& acc) { acc += isfinite_(x(i)) ? 0 : 1; }, bad);
+    fs.non_finite = bad;
+    return fs;
+  }
+
+  // One substep; public because CUDA device lambdas may not live in private member functions.
+  void substep(int s) {
+    const real h = 1 / (st_.fps * st_.substeps);
+    const real t_end = real(frame_ - st_.frame_start) + real(s + 1) / real(st_.substeps);
+    if (collider_frames_.extent(0) > 0) {
+      Kokkos::deep_copy(exec_, state_.collider_x_start, state_.collider_x);
+      kernels::interpolate_animation(exec_, collider_frames_, state_.collider_x, t_end);
+    }
+    kernels::interpolate_animation(exec_, target_frames_, targets_, t_end);
+    kernels::predict<Exec, Mem>(exec_, state_, st_.gravity + st_.wind, st_.velocity_damping, h);
+    kernels::follow_targets(exec_, kin_point_, kin_target_, targets_, state_.x);
+    Kokkos::deep_copy(exec_, lambda_, 0.0);
+    if (collision_) collision_->begin_substep(state_, h);
+    const int P = collision_ ? st_.collision_passes : 0, I = st_.iterations;
+    int next_pass = 0;
+    for (int it = 0; it < I; ++it) {
+      while (next_pass < P && (long(next_pass) * I) / P == it) { collision_->pass(state_, h); ++next_pass; }
+      gauss_seidel_sweep(h);
+      if (collision_) collision_->project(state_, h);
+    }
+    while (next_pass < P) { collision_->pass(state_, h); ++next_pass; }
+    for (int it = 0; it < st_.smoothing_iterations; ++it) jacobi_sweep(h);
+    kernels::update_velocity(exec_, state_, h);
+    if (collision_) collision_->end_substep(state_, h);
+  }
+
+  void gauss_seidel_sweep(real h) {
+    auto rows = rows_;
+    auto lambda = lambda_;
+    auto x = state_.x, xs = state_.x_start;
+    auto w = state_.w;
+    const RowContext<Mem> ctx{targets_, state_.collider_x};
+    for (size_t c = 0; c + 1 < colour_offset_.size(); ++c)
+      Kokkos::parallel_for("weft::project_colour",
+                           Kokkos::RangePolicy<Exec>(exec_, colour_offset_[c], colour_offset_[c + 1]),
+                           KOKKOS_LAMBDA(long r) { project_row(rows(r), x, xs, w, lambda(r), ctx, h); });
+  }
+
+  // Vellum's smoothing: every row computes its correction from the same positions, and each point moves
+  // by the average of the corrections it receives (gathered in row order: deterministic).
+  void jacobi_sweep(real h) {
+    auto rows = rows_;
+    auto lambda = lambda_;
+    auto x = state_.x, xs = state_.x_start;
+    auto w = state_.w;
+    auto delta = row_delta_;
+    const RowContext<Mem> ctx{targets_, state_.collider_x};
+    Kokkos::parallel_for("weft::jacobi_rows", Kokkos::RangePolicy<Exec>(exec_, 0, rows.extent(0)), KOKKOS_LAMBDA(long r) {
+      const Row& row = rows(r);
+      real C = 0;
+      Vec3 g[5];
+      const int n = row_eval(row, x, ctx, C, g);
+      real wi[5] = {0, 0, 0, 0, 0};
+      Vec3 dx[5];
+      for (int k = 0; k < n; ++k) { wi[k] = w(row.idx[k]); dx[k] = x(row.idx[k]) - xs(row.idx[k]); }
+      const real dl = xpbd_delta_lambda<5>(C, g, wi, dx, lambda(r), row.m, h);
+      lambda(r) += dl;
+      for (int k = 0; k < 5; ++k) delta(5 * r + k) = (wi[k] * dl) * g[k];
+    });
+    auto off = point_slot_offset_;
+    auto slot = point_slot_;
+    Kokkos::parallel_for("weft::jacobi_points", Kokkos::RangePolicy<Exec>(exec_, 0, x.extent(0)), KOKKOS_LAMBDA(long i) {
+      const long lo = off(i), hi = off(i + 1);
+      if (hi == lo) return;
+      Vec3 sum{};
+      for (long k = lo; k < hi; ++k) sum += delta(slot(k));
+      x(i) += sum / real(hi - lo);
+    });
+  }
+
+ private:
+  template <class V>
+  std::vector<typename V::non_const_value_type> to_host(const V& d) const {
+    auto m = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d);
+    return std::vector<typename V::non_const_value_type>(m.data(), m.data() + m.extent(0));
+  }
+  template <class T>
+  View<T*> upload(const std::vector<T>& h, const char* label) const {
+    View<T*> d(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(label)), h.size());
+    Kokkos::View<const T*, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> hv(h.data(), h.size());
+    Kokkos::deep_copy(d, hv);
+    return d;
+  }
+  View<Vec3**> upload_frames(const Animation& a, const char* label) const {
+    const size_t nf = a.frames.size(), n = nf ? a.frames[0].size() : 0;
+    View<Vec3**> d(std::string(label), nf, n);
+    auto m = Kokkos::create_mirror_view(d);
+    for (size_t f = 0; f < nf; ++f)
+      for (size_t i = 0; i < n; ++i) m(f, i) = a.frames[f][i];
+    Kokkos::deep_copy(d, m);
+    return d;
+  }
+
+  void upload_points(const Scene& sc) {
+    const ClothPoints& p = sc.points;
+    const size_t n = p.size();
+    std::vector<real> w(n);
+    std::vector<char> kinematic(n, 0);
+    for (int k : sc.kinematic_point) kinematic[k] = 1;
+    movable_ = 0;
+    for (size_t i = 0; i < n; ++i) {
+      w[i] = (p.mass[i] > 0 && !(p.stopped[i] & 1) && !kinematic[i]) ? 1 / p.mass[i] : 0.0;
+      movable_ += w[i] > 0;
+    }
+    state_.x = upload(p.position, "weft::x");
+    state_.v = upload(p.velocity, "weft::v");
+    state_.x_start = View<Vec3*>("weft::x_start", n);
+    state_.w = upload(w, "weft::w");
+    mass_ = upload(p.mass, "weft::mass");
+    scratch_ = View<real*>("weft::scratch", n);
+    w_host_ = w;
+  }
+
+  void upload_animation(const Scene& sc) {
+    target_frames_ = upload_frames(sc.pin_targets, "weft::target_frames");
+    targets_ = View<Vec3*>("weft::targets", target_frames_.extent(1));
+    kernels::interpolate_animation(exec_, target_frames_, targets_, 0.0);
+    kin_point_ = upload(sc.kinematic_point, "weft::kin_point");
+    kin_target_ = upload(sc.kinematic_target, "weft::kin_target");
+    // All colliders' vertices, concatenated; frames padded by holding each collider's last frame.
+    Animation all;
+    size_t nf = 0;
+    for (const Collider& c : sc.colliders) nf = c.motion.frames.size() > nf ? c.motion.frames.size() : nf;
+    all.frames.resize(nf);
+    collider_offset_.clear();
+    int offset = 0;
+    for (const Collider& c : sc.colliders) {
+      collider_offset_.push_back(offset);
+      for (size_t f = 0; f < nf; ++f) {
+        const auto& src = c.motion.frames[f < c.motion.frames.size() ? f : c.motion.frames.size() - 1];
+        all.frames[f].insert(all.frames[f].end(), src.begin(), src.end());
+      }
+      offset += int(c.motion.frames[0].size());
+    }
+    collider_frames_ = upload_frames(all, "weft::collider_frames");
+    state_.collider_x = View<Vec3*>("weft::collider_x", collider_frames_.extent(1));
+    state_.collider_x_start = View<Vec3*>("weft::collider_x_start", collider_frames_.extent(1));
+    kernels::interpolate_animation(exec_, collider_frames_, state_.collider_x, 0.0);
+    Kokkos::deep_copy(state_.collider_x_start, state_.collider_x);
+  }
+
+  void upload_rows(const Scene& sc) {
+    std::vector<Row> rows = build_rows(sc, collider_offset_);
+    const size_t n = sc.points.size();
+    std::vector<char> movable(n);
+    for (size_t i = 0; i < n; ++i) movable[i] = w_host_[i] > 0;
+    const Colouring col = colour_greedy(long(rows.size()), long(n), movable, [&](long r, int(&out)[8]) {
+      return row_particles(rows[r], out);
+    });
+    // Stable counting sort by colour keeps each colour's rows in input order (kinds stay grouped).
+    colour_offset_.assign(col.count + 1, 0);
+    for (int c : col.colour) ++colour_offset_[c + 1];
+    for (int c = 0; c < col.count; ++c) colour_offset_[c + 1] += colour_offset_[c];
+    std::vector<long> fill(colour_offset_.begin(), colour_offset_.end() - 1);
+    std::vector<Row> sorted(rows.size());
+    for (size_t r = 0; r < rows.size(); ++r) sorted[fill[col.colour[r]]++] = rows[r];
+    rows_ = upload(sorted, "weft::rows");
+    lambda_ = View<real*>("weft::lambda", sorted.size());
+    row_scratch_ = View<real*>("weft::row_scratch", sorted.size());
+    // Jacobi gather lists: for each point, the (row, slot) entries that move it, in row order.
+    if (st_.smoothing_iterations > 0) {
+      std::vector<long> off(n + 1, 0), slots;
+      for (const Row& r : sorted)
+        for (int k = 0; k < r.n; ++k) ++off[r.idx[k] + 1];
+      for (size_t i = 0; i < n; ++i) off[i + 1] += off[i];
+      slots.resize(off[n]);
+      std::vector<long> pos(off.begin(), off.end() - 1);
+      for (size_t r = 0; r < sorted.size(); ++r)
+        for (int k = 0; k < sorted[r].n; ++k) slots[pos[sorted[r].idx[k]]++] = long(5 * r + k);
+      point_slot_offset_ = upload(off, "weft::point_slot_offset");
+      point_slot_ = upload(slots, "weft::point_slot");
+      row_delta_ = View<Vec3*>("weft::row_delta", 5 * sorted.size());
+    }
+  }
+
+  Exec exec_;
+  SolverSettings st_;
+  int frame_;
+  long movable_ = 0;
+  SolverState<Exec> state_;
+  View<real*> mass_, scratch_, row_scratch_, lambda_;
+  std::vector<real> w_host_;
+  View<Row*> rows_;
+  std::vector<long> colour_offset_;
+  View<Vec3**> target_frames_, collider_frames_;
+  View<Vec3*> targets_;
+  View<int*> kin_point_, kin_target_;
+  std::vector<int> collider_offset_;
+  View<Vec3*> row_delta_;
+  View<long*> point_slot_offset_, point_slot_;
+  std::unique_ptr<CollisionStage<Exec>> collision_;
+};
+
+}  // namespace weft

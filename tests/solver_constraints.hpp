@@ -1,0 +1,141 @@
+// Each constraint kind alone, solved by the frame loop, reaches its rest value; colouring is race-free.
+#include "constraints/bend.hpp"
+#include "tests/solver_scene_fixture.hpp"
+
+namespace {
+
+using weft::real;
+using weft::Vec3;
+
+// Two triangles sharing edge 2-3, with no gravity.
+weft::Scene hinge_scene() {
+  weft::Scene s = weft::test::empty_scene("test-hinge");
+  const std::vector<Vec3> x = {{0, 0, -1}, {0.2, 0.3, 1}, {-1, 0, 0}, {1, 0, 0}};
+  for (const Vec3& p : x) {
+    s.points.position.push_back(p);
+    s.points.velocity.push_back({});
+    s.points.mass.push_back(1);
+    s.points.thickness.push_back(0.001);
+    s.points.friction.push_back(1);
+    s.points.dynamic_friction.push_back(1);
+    s.points.layer.push_back(0);
+    s.points.stopped.push_back(0);
+    s.points.piece.push_back(0);
+  }
+  s.triangles = {{0, 2, 3}, {1, 3, 2}};
+  s.settings.gravity = {0, 0, 0};
+  s.settings.iterations = 50;
+  return s;
+}
+
+template <class Exec>
+std::vector<Vec3> settle(const weft::Scene& s, int frames = 24) {
+  return weft::test::run_frames<Exec>(s, frames);
+}
+
+TEST(WEFT_TEST_SUITE, each_constraint_alone_reaches_rest) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  const auto rigid = weft::xpbd_material(1.0 / 0.0, -1, 0);
+  {
+    weft::Scene s = hinge_scene();
+    s.constraints.distance.push_back({2, 3, 1.5, rigid});
+    const auto x = settle<Exec>(s);
+    EXPECT_NEAR(weft::norm(x[3] - x[2]), 1.5, 1e-9);
+  }
+  {
+    weft::Scene s = hinge_scene();
+    const real rest = 30 * weft::pi / 180;
+    s.constraints.bend.push_back({0, 1, 2, 3, rest, rigid});
+    const auto x = settle<Exec>(s);
+    EXPECT_NEAR(weft::bend_rest_angle(x[0], x[1], x[2], x[3]), rest, 1e-9);
+  }
+  {
+    weft::Scene s = hinge_scene();
+    s.constraints.pin.push_back({1, {0.5, 0.5, 0.5}, -1, 0, rigid});
+    const auto x = settle<Exec>(s);
+    EXPECT_LT(weft::norm(x[1] - Vec3{0.5, 0.5, 0.5}), 1e-9);
+  }
+  {
+    weft::Scene s = hinge_scene();
+    weft::PtPrimConstraint q{1, {2, 3, -1, -1}, {0.25, 0.75, 0, 0}, 2, 0.2, rigid};
+    s.constraints.ptprim.push_back(q);
+    const auto x = settle<Exec>(s);
+    EXPECT_NEAR(weft::norm(0.25 * x[2] + 0.75 * x[3] - x[1]), 0.2, 1e-9);
+  }
+  {  // triangle stretch: a stretched triangle returns to its rest shape
+    weft::Scene s = hinge_scene();
+    weft::TriarapConstraint t{0, 2, 3, {0, 0, 0, 0}, 0, false, rigid};
+    weft::triarap_rest(Vec3{0, 0, -0.5}, Vec3{-0.5, 0, 0}, Vec3{0.5, 0, 0}, t.dm_inv, t.area);
+    s.constraints.triarap.push_back(t);
+    const auto x = settle<Exec>(s);
+    EXPECT_NEAR(weft::norm(x[3] - x[2]), 1.0, 1e-7);
+    EXPECT_NEAR(weft::norm(x[0] - x[2]), std::sqrt(0.5), 1e-7);
+  }
+  {  // attach to a collider triangle (static)
+    weft::Scene s = hinge_scene();
+    weft::Collider c;
+    c.name = "plate";
+    c.triangles = {{0, 1, 2}};
+    c.motion.frames.push_back({{0, 2, 0}, {1, 2, 0}, {0, 2, 1}});
+    s.colliders.push_back(c);
+    s.constraints.attach.push_back({0, 0, 0, 0.25, 0.5, 0, rigid});
+    const auto x = settle<Exec>(s);
+    EXPECT_LT(weft::norm(x[0] - Vec3{0.25, 2, 0.5}), 1e-9);
+  }
+}
+
+TEST(WEFT_TEST_SUITE, fem_membrane_sheet_hangs_like_a_stiff_membrane) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  weft::ClothMaterial mat;
+  mat.stretch = weft::StretchModel::Fem;
+  mat.young = 1e6;
+  weft::Scene s = weft::test::sheet_scene(6, mat);
+  s.points.stopped[0] = s.points.stopped[6] = 1;
+  s.settings.velocity_damping = 1;
+  weft::FrameStats last;
+  weft::test::run_frames<Exec>(s, 48, nullptr, &last);
+  EXPECT_EQ(last.non_finite, 0);
+  // Stiff enough that the edges stay near their rest lengths.
+  EXPECT_LT(last.max_strain, 0.2);
+}
+
+TEST(WEFT_TEST_SUITE, colouring_never_puts_two_rows_on_one_moving_particle) {
+  weft::Scene s = weft::test::sheet_scene(12);
+  s.points.stopped[0] = 1;
+  auto rows = weft::build_rows(s, {});
+  std::vector<char> movable(s.points.size(), 1);
+  movable[0] = 0;
+  auto col = weft::colour_greedy(long(rows.size()), long(s.points.size()), movable,
+                                 [&](long r, int(&out)[8]) { return weft::row_particles(rows[r], out); });
+  EXPECT_GT(col.count, 1);
+  EXPECT_LT(col.count, 40);
+  std::vector<std::vector<int>> seen(col.count, std::vector<int>(s.points.size(), -1));
+  for (size_t r = 0; r < rows.size(); ++r) {
+    int p[8];
+    const int n = weft::row_particles(rows[r], p);
+    for (int k = 0; k < n; ++k) {
+      if (!movable[p[k]]) continue;
+      ASSERT_EQ(seen[col.colour[r]][p[k]], -1) << "rows " << seen[col.colour[r]][p[k]] << " and " << r;
+      seen[col.colour[r]][p[k]] = int(r);
+    }
+  }
+  auto again = weft::colour_greedy(long(rows.size()), long(s.points.size()), movable,
+                                   [&](long r, int(&out)[8]) { return weft::row_particles(rows[r], out); });
+  EXPECT_EQ(again.colour, col.colour);
+}
+
+TEST(WEFT_TEST_SUITE, jacobi_smoothing_keeps_constraints_and_determinism) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  weft::Scene s = weft::test::sheet_scene(8);
+  s.points.stopped[0] = s.points.stopped[8] = 1;
+  s.settings.smoothing_iterations = 5;
+  uint64_t h1 = 0, h2 = 0;
+  weft::FrameStats last;
+  weft::test::run_frames<Exec>(s, 12, &h1, &last);
+  weft::test::run_frames<Exec>(s, 12, &h2);
+  EXPECT_EQ(h1, h2);
+  EXPECT_EQ(last.non_finite, 0);
+  EXPECT_LT(last.max_strain, 0.5);
+}
+
+}  // namespace
