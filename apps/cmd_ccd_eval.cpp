@@ -48,7 +48,7 @@ struct CcdEvalOptions {
 
 void add_ccd_eval(CLI::App& app, const GlobalOptions& g, Action& run) {
   static CcdEvalOptions o;
-  auto* cmd = app.add_subcommand("ccd-eval", "score the CCD narrow phase on benchmark query files (*.csv below a folder)");
+  auto* cmd = app.add_subcommand("ccd-eval", "score the CCD narrow phase on benchmark query files (*.csv below dir)");
   cmd->add_option("dir", o.dir, "folder searched recursively for query files")->required();
   cmd->add_option("--ms", o.ms, "minimum separation (default 0)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--tolerance", o.settings.tolerance, "CCD tolerance (default 1e-6)")->check(CLI::PositiveNumber);

@@ -1,18 +1,109 @@
-// `weft info`: versions, backends and devices.
+// `weft info`: versions, backends and devices; `weft info FILE`: what a scene or cache file holds.
 #include "apps/cli.hpp"
+#include "core/hash.hpp"
 #include "core/kokkos_compat.hpp"
+#include "io/cache_file.hpp"
+#include "io/hdf5_util.hpp"
+#include "io/scene_file.hpp"
 #include "weft_version.hpp"
 
 #include <iostream>
+#include <sstream>
 
 namespace weft::cli {
 
 namespace {
 
+std::string vec_string(Vec3 v) {
+  std::ostringstream s;
+  s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+  return s.str();
+}
+
+void print_settings(const SolverSettings& s) {
+  std::cout << "settings: frames " << s.frame_start << "-" << s.frame_end << " at " << s.fps << " fps, substeps "
+            << s.substeps << ", iterations " << s.iterations << ", collision passes " << s.collision_passes
+            << ", smoothing iterations " << s.smoothing_iterations << "\n"
+            << "  gravity " << vec_string(s.gravity) << ", wind " << vec_string(s.wind) << ", velocity damping "
+            << s.velocity_damping << "\n"
+            << "  self collision " << (s.self_collision ? "on" : "off") << ", friction static " << s.static_friction
+            << " dynamic " << s.dynamic_friction << ", layer shock " << s.layer_shock << ", parallel edges "
+            << s.parallel_edge_degrees << " degrees\n"
+            << "  impact zone smoothing " << (s.impact_zone_smoothing ? "on" : "off") << " (epsilon "
+            << s.impact_zone_epsilon << ", " << s.impact_zone_sweeps << " sweeps)\n";
+}
+
+void print_scene(const std::string& path) {
+  const Scene s = io::read_scene(path);
+  const Constraints& c = s.constraints;
+  std::cout << path << ": weft scene, format version " << io::kSceneFormatVersion << "\n"
+            << "name " << s.name << "\n"
+            << "points " << s.points.size() << ", triangles " << s.triangles.size() << "\n"
+            << "constraints " << c.size() << ": distance " << c.distance.size() << ", bend " << c.bend.size()
+            << ", triarap " << c.triarap.size() << ", pin " << c.pin.size() << ", attach " << c.attach.size()
+            << ", ptprim " << c.ptprim.size() << ", fem " << c.fem.size() << "\n"
+            << "pin targets " << (s.pin_targets.empty() ? 0 : s.pin_targets.frames[0].size()) << " over "
+            << s.pin_targets.frames.size() << " frames, kinematic pins " << s.kinematic_point.size() << "\n";
+  for (size_t i = 0; i < s.colliders.size(); ++i) {
+    const Collider& col = s.colliders[i];
+    std::cout << "collider " << i << " '" << col.name << "': " << col.motion.frames[0].size() << " points, "
+              << col.triangles.size() << " triangles, " << col.motion.frames.size() << " frames, thickness "
+              << col.thickness << ", friction " << col.friction << "\n";
+  }
+  std::cout << "needs collisions " << (s.needs_collisions ? "yes" : "no") << "\n";
+  print_settings(s.settings);
+}
+
+void print_cache(const std::string& path) {
+  const io::CacheReader c(path);
+  const io::CacheHeader& h = c.header();
+  std::cout << path << ": weft cache, format version " << io::kCacheFormatVersion << "\n"
+            << "scene " << h.scene << ", computed by the " << h.backend << " backend\n"
+            << "points " << h.points << ", triangles " << h.triangles.size() << "\n";
+  if (c.frame_count() == 0) {
+    std::cout << "frames: none\n";
+  } else {
+    const int last = c.frames().back();
+    double seconds = 0;
+    for (const FrameStats& fs : c.stats()) seconds += fs.seconds;
+    std::cout << "frames " << c.frames().front() << "-" << last << " (" << c.frame_count() << " stored, "
+              << (last >= h.settings.frame_end ? "complete" : "run planned to " + std::to_string(h.settings.frame_end))
+              << "), " << seconds << " s of simulation\n";
+  }
+  print_settings(h.settings);
+  std::cout << "hash " << hash_hex(io::cache_hash(c)) << "\n";
+}
+
+int describe_file(const std::string& path) {
+  try {
+    std::string kind;
+    {
+      const io::h5::File f = io::h5::File::open(path);
+      kind = io::h5::format_of(f);
+    }
+    if (kind == io::kSceneFormat)
+      print_scene(path);
+    else if (kind == io::kCacheFormat)
+      print_cache(path);
+    else
+      throw Error(path + ": not a weft scene or cache (" +
+                      (kind.empty() ? std::string("no weft_format attribute") : "weft_format is '" + kind + "'") + ")",
+                  2);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(e.what(), 2);
+  }
+  return 0;
+}
+
 void add_info(CLI::App& app, const GlobalOptions& g, Action& run) {
-  auto* cmd = app.add_subcommand("info", "print versions, enabled backends and devices");
+  static std::string file;
+  auto* cmd = app.add_subcommand("info", "print versions, enabled backends and devices, or what a .h5 file holds");
+  cmd->add_option("file", file, "a weft scene or cache (.h5): print its kind, version, counts, frames, settings");
   cmd->callback([&g, &run] {
     run = [&g] {
+      if (!file.empty()) return describe_file(file);
       const Backend b = resolve_backend(g);
       Runtime rt(g.threads);
       std::cout << "weft " << WEFT_VERSION << "\n";

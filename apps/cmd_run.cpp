@@ -1,10 +1,20 @@
-// `weft run <scene>`: simulate a frame range, print per-frame statistics, optionally a hash of every frame.
+// `weft run <scene>`: simulate a frame range, print per-frame statistics (or a progress bar on a terminal),
+// optionally a hash of every frame; write the frames to an HDF5 cache and/or a Houdini .geo sequence as they
+// are computed, and continue an interrupted cache with --resume.
 #include "apps/cli.hpp"
 #include "backends/simulation.hpp"
 #include "core/hash.hpp"
+#include "io/cache_file.hpp"
+#include "io/scene_file.hpp"
 #include "io/scene_source.hpp"
 
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 
 namespace weft::cli {
@@ -17,6 +27,8 @@ struct RunOptions {
   std::string schedule;
   int substeps = -1, iterations = -1, collision_passes = -1, smoothing = -1;
   bool hash = false, quiet = false;
+  std::string output, geo_dir;
+  bool resume = false;
 };
 
 // The paper's three schedules: (iterations, collision passes, substeps).
@@ -38,8 +50,102 @@ void apply_frames(const std::string& range, SolverSettings& st) {
   st.frame_end = b;
 }
 
+// The command that continues this run from its cache.
+std::string resume_command(const RunOptions& o) {
+  std::string c = "weft run " + o.scene;
+  const auto opt = [&](const char* name, const std::string& value) {
+    if (!value.empty()) c += std::string(" ") + name + " " + value;
+  };
+  const auto num = [&](const char* name, int value, int unset) { if (value != unset) opt(name, std::to_string(value)); };
+  num("--res", o.res, 0);
+  opt("--frames", o.frames);
+  opt("--schedule", o.schedule);
+  num("--substeps", o.substeps, -1);
+  num("--iterations", o.iterations, -1);
+  num("--collision-passes", o.collision_passes, -1);
+  num("--smoothing", o.smoothing, -1);
+  opt("--geo-sequence", o.geo_dir);
+  if (o.hash) c += " --hash";
+  return c + " -o " + o.output + " --resume";
+}
+
+// Why the cache cannot be continued by this run ("" when it can): it must come from the same points,
+// triangles, settings (the last frame aside) and initial state, or the result would differ from a straight run.
+std::string resume_mismatch(const io::CacheReader& c, const io::CacheHeader& run, const std::vector<Vec3>& initial) {
+  const io::CacheHeader& h = c.header();
+  if (c.frame_count() == 0) return "it holds no frames";
+  if (h.points != run.points)
+    return "it has " + std::to_string(h.points) + " points, the scene " + std::to_string(run.points);
+  if (h.triangles != run.triangles) return "its triangles differ from the scene's";
+  for (const std::string& field : io::differing_settings(h.settings, run.settings))
+    if (field != "frame_end") return "it was computed with another " + field + " setting";
+  const std::vector<Vec3> first = c.positions(0);
+  if (std::memcmp(first.data(), initial.data(), initial.size() * sizeof(Vec3)) != 0)
+    return "its first frame is not the scene's initial state";
+  return "";
+}
+
+// SIGINT / SIGTERM during the frame loop ask the run to stop once the frame in progress is written; a
+// second signal acts as usual.
+volatile std::sig_atomic_t stop_signal = 0;
+extern "C" void request_stop(int sig) { stop_signal = sig; }
+
+class StopOnSignal {
+ public:
+  StopOnSignal() {
+    struct sigaction sa {};
+    sa.sa_handler = request_stop;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESETHAND;
+    sigaction(SIGINT, &sa, &old_int_);
+    sigaction(SIGTERM, &sa, &old_term_);
+  }
+  ~StopOnSignal() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  int signal() const { return stop_signal; }
+
+ private:
+  struct sigaction old_int_ {}, old_term_ {};
+};
+
+// A progress bar with the time left on a terminal; one line per frame otherwise (logs, pipes).
+class Progress {
+ public:
+  Progress(bool quiet, int first, int last)
+      : quiet_(quiet), tty_(::isatty(STDOUT_FILENO)), first_(first), last_(last), start_(Clock::now()) {}
+
+  void frame(const FrameStats& fs) {
+    ++done_;
+    if (quiet_) return;
+    if (!tty_) {
+      std::printf("frame %d  ke %.3e J  rms speed %.3e m/s  max strain %.3e  %.2f ms\n", fs.frame, fs.kinetic_energy,
+                  fs.rms_speed, fs.max_strain, 1e3 * fs.seconds);
+      return;
+    }
+    const int total = last_ - first_, width = 30;
+    const double per_frame = std::chrono::duration<double>(Clock::now() - start_).count() / done_;
+    const long eta = long(per_frame * (last_ - fs.frame) + 0.5);
+    const int filled = total > 0 ? int(double(width) * (fs.frame - first_) / total) : width;
+    std::printf("\r[%s%s] frame %d/%d  %.2f s/frame  ETA %ld:%02ld ", std::string(filled, '#').c_str(),
+                std::string(width - filled, '.').c_str(), fs.frame, last_, per_frame, eta / 60, eta % 60);
+    std::fflush(stdout);
+  }
+  void finish() const {
+    if (!quiet_ && tty_ && done_ > 0) std::printf("\n");
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  bool quiet_, tty_;
+  int first_, last_, done_ = 0;
+  Clock::time_point start_;
+};
+
 int run(const GlobalOptions& g, const RunOptions& o) {
   const Backend b = resolve_backend(g);
+  if (o.resume && o.output.empty()) throw Error("--resume continues a cache: give it with -o CACHE.h5", 2);
   Runtime rt(g.threads);
   Scene scene = io::load_scene(o.scene, io::BuiltinOptions{o.res});
   SolverSettings& st = scene.settings;
@@ -53,20 +159,75 @@ int run(const GlobalOptions& g, const RunOptions& o) {
   if (!o.quiet)
     std::printf("%s: %zu points, %zu triangles, %ld constraint rows in %d colours, backend %s\n", scene.name.c_str(),
                 scene.points.size(), scene.triangles.size(), sim->row_count(), sim->colour_count(), backend_name(b));
-  uint64_t h = hash_combine(0, sim->hash_positions());
+
+  const io::CacheHeader header{scene.name, backend_name(b), scene.points.size(), scene.triangles, st};
+  const std::string stem = io::frame_file_stem(scene.name);
+  std::unique_ptr<io::CacheWriter> cache;
+  const auto write_frame = [&](const FrameStats& fs) {
+    if (!cache && o.geo_dir.empty()) return;
+    const std::vector<Vec3> x = sim->positions(), v = sim->velocities();
+    if (!o.geo_dir.empty()) io::write_frame_geo(io::frame_file(o.geo_dir, stem, fs.frame, "geo"), scene.triangles, x, v);
+    if (cache) cache->append(fs, x, v);
+  };
+  const auto make_geo_dir = [&] {
+    std::error_code ec;
+    if (!o.geo_dir.empty()) std::filesystem::create_directories(o.geo_dir, ec);
+    if (ec) throw Error("cannot create " + o.geo_dir + ": " + ec.message());
+  };
+
+  const StopOnSignal stop;  // from here on, SIGINT / SIGTERM leave complete files
+
+  // Where the run starts: the scene's initial state, or the last frame of the cache it continues.
+  uint64_t h = 0;
+  if (o.resume && std::filesystem::exists(o.output)) {
+    const io::CacheReader previous(o.output);
+    const std::string why = resume_mismatch(previous, header, scene.points.position);
+    if (!why.empty()) throw Error(o.output + ": cannot resume from this cache: " + why, 2);
+    const int k = std::min(previous.frame_count(), st.frame_end - st.frame_start + 1);
+    if (o.hash) h = io::cache_hash(previous, k);  // the hash covers every frame, computed now or before
+    const int last = previous.frames()[k - 1];
+    if (!o.quiet) std::printf("resuming from %s: frames %d-%d are done\n", o.output.c_str(), st.frame_start, last);
+    sim->set_state(last, previous.positions(k - 1), previous.velocities(k - 1));
+    if (last < st.frame_end) cache = std::make_unique<io::CacheWriter>(o.output, header, previous, k);
+    make_geo_dir();
+  } else {
+    if (o.resume && !o.quiet) std::printf("no cache at %s yet: starting at frame %d\n", o.output.c_str(), st.frame_start);
+    h = hash_combine(0, sim->hash_positions());
+    // The cache stays under a temporary name until its first frame is in: if the .geo folder or first file
+    // cannot be written, the run stops with neither output left behind.
+    if (!o.output.empty()) cache = std::make_unique<io::CacheWriter>(o.output, header);
+    make_geo_dir();
+    write_frame(sim->measure());
+  }
+
+  Progress progress(o.quiet, sim->frame(), st.frame_end);
   double total = 0;
+  int computed = 0;
   while (sim->frame() < st.frame_end) {
     const FrameStats fs = sim->step_frame();
-    total += fs.seconds;
-    if (o.hash) h = hash_combine(h, sim->hash_positions());
-    if (!o.quiet)
-      std::printf("frame %d  ke %.3e J  rms speed %.3e m/s  max strain %.3e  %.2f ms\n", fs.frame, fs.kinetic_energy,
-                  fs.rms_speed, fs.max_strain, 1e3 * fs.seconds);
     if (fs.non_finite) throw Error(scene.name + ": " + std::to_string(fs.non_finite) + " points became non-finite at frame " +
                                    std::to_string(fs.frame), 3);
+    total += fs.seconds;
+    ++computed;
+    if (o.hash) h = hash_combine(h, sim->hash_positions());
+    write_frame(fs);
+    progress.frame(fs);
+    if (stop.signal()) {
+      if (cache) cache->close();
+      progress.finish();
+      std::fflush(stdout);
+      std::cerr << "weft: stopped by " << (stop.signal() == SIGINT ? "SIGINT" : "SIGTERM") << " after frame " << fs.frame;
+      if (cache)
+        std::cerr << "; " << o.output << " holds frames " << st.frame_start << "-" << fs.frame
+                  << ". Continue with:\n  " << resume_command(o) << "\n";
+      else
+        std::cerr << " (without -o CACHE.h5 there is nothing to resume from)\n";
+      return 128 + stop.signal();
+    }
   }
-  const int nframes = st.frame_end - st.frame_start;
-  if (!o.quiet && nframes > 0) std::printf("%d frames, %.3f ms per frame\n", nframes, 1e3 * total / nframes);
+  if (cache) cache->close();
+  progress.finish();
+  if (!o.quiet && computed > 0) std::printf("%d frames, %.3f ms per frame\n", computed, 1e3 * total / computed);
   if (o.hash) std::printf("hash %s\n", hash_hex(h).c_str());
   return 0;
 }
@@ -74,7 +235,7 @@ int run(const GlobalOptions& g, const RunOptions& o) {
 void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   auto o = std::make_shared<RunOptions>();
   auto* cmd = app.add_subcommand("run", "simulate a scene");
-  cmd->add_option("scene", o->scene, "builtin:NAME")->required();
+  cmd->add_option("scene", o->scene, "builtin:NAME, a .json scene or a .h5 scene file")->required();
   cmd->add_option("--res", o->res, "resolution of a built-in scene (quads along a side)")->check(CLI::PositiveNumber);
   cmd->add_option("--frames", o->frames, "frame range A-B (A is the initial state)");
   cmd->add_option("--schedule", o->schedule, "paper-1 (200 it, 20 passes, 1 substep), paper-2 (20, 2, 10), paper-3 (10, 1, 20)");
@@ -84,6 +245,10 @@ void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_option("--smoothing", o->smoothing, "Jacobi smoothing iterations per substep")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--hash", o->hash, "print 'hash <16 hex digits>' of every frame's positions as the last line");
   cmd->add_flag("--quiet", o->quiet, "no per-frame lines");
+  cmd->add_option("-o,--output", o->output, "HDF5 cache written frame by frame (readable while the run goes on)");
+  cmd->add_option("--geo-sequence", o->geo_dir, "also write each frame as DIR/<scene>.$F4.geo (P and v)");
+  cmd->add_flag("--resume", o->resume,
+                "continue the -o cache from its last frame (same scene and settings; --frames may extend it)");
   cmd->callback([&g, &action, o] { action = [&g, o] { return run(g, *o); }; });
 }
 

@@ -20,8 +20,13 @@ class Simulation {
   virtual uint64_t hash_positions() const = 0;    // bitwise hash of the current positions
   virtual std::vector<Vec3> positions() const = 0;
   virtual std::vector<Vec3> velocities() const = 0;
+  // Continue from a saved state (positions and velocities at `frame`): --resume gives the same bits as an
+  // uninterrupted run, since nothing else carries over from one frame to the next.
+  virtual void set_state(int frame, const std::vector<Vec3>& x, const std::vector<Vec3>& v) = 0;
   virtual int colour_count() const = 0;
   virtual long row_count() const = 0;
+  // Pairs of cloth triangles that intersect at the current positions (discrete check, adjacent pairs excluded).
+  virtual long intersections() const = 0;
 };
 
 // Throws InputError for an invalid scene, std::runtime_error when `b` is not compiled in.

@@ -1,7 +1,8 @@
-// Simulation on one execution space; included only by backends/<backend>.cpp.
+// Simulation on one execution space; included only by backends/<backend>.cpp (and tests).
 #pragma once
 #include "backends/simulation.hpp"
-#include "core/error.hpp"
+#include "collision/collision_handler.hpp"
+#include "collision/tri_tri.hpp"
 #include "core/solver.hpp"
 
 namespace weft {
@@ -9,23 +10,47 @@ namespace weft {
 template <class Exec>
 class SimulationOn final : public Simulation {
  public:
-  explicit SimulationOn(const Scene& scene) : solver_(checked(scene)) {}
-  FrameStats step_frame() override { return solver_.step_frame(); }
-  FrameStats measure() const override { return solver_.measure(); }
+  explicit SimulationOn(const Scene& scene) : solver_(scene) {
+    // A scene pays only for the stages it uses: no collision stage without colliders or self collision.
+    if (!scene.colliders.empty() || scene.settings.self_collision) {
+      auto handler = std::make_unique<CollisionHandler<Exec>>(scene);
+      collisions_ = handler.get();
+      solver_.set_collision_stage(std::move(handler));
+    }
+    tris_ = Kokkos::View<int* [3], typename Exec::memory_space>("weft::sim_tris", scene.triangles.size());
+    auto m = Kokkos::create_mirror_view(tris_);
+    for (size_t t = 0; t < scene.triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k) m(t, k) = scene.triangles[t][k];
+    Kokkos::deep_copy(tris_, m);
+  }
+  FrameStats step_frame() override { return with_collision_stats(solver_.step_frame()); }
+  FrameStats measure() const override { return with_collision_stats(solver_.measure()); }
   int frame() const override { return solver_.frame(); }
   uint64_t hash_positions() const override { return solver_.hash_positions(); }
   std::vector<Vec3> positions() const override { return solver_.positions(); }
   std::vector<Vec3> velocities() const override { return solver_.velocities(); }
+  void set_state(int frame, const std::vector<Vec3>& x, const std::vector<Vec3>& v) override {
+    solver_.set_state(frame, x, v);
+  }
   int colour_count() const override { return solver_.colour_count(); }
   long row_count() const override { return solver_.row_count(); }
+  long intersections() const override {
+    Lbvh<Exec> bvh;
+    return count_intersections(bvh, Kokkos::View<const Vec3*, typename Exec::memory_space>(solver_.state().x),
+                               Kokkos::View<const int* [3], typename Exec::memory_space>(tris_));
+  }
 
  private:
-  static const Scene& checked(const Scene& s) {
-    if (s.needs_collisions)
-      throw InputError(s.name + ": this scene needs collision handling, which this build of weft does not have yet");
-    return s;
+  FrameStats with_collision_stats(FrameStats fs) const {
+    if (collisions_) {
+      fs.contacts = collisions_->stats().contacts;
+      fs.impact_zone_points = collisions_->stats().zones.points;
+    }
+    return fs;
   }
   Solver<Exec> solver_;
+  CollisionHandler<Exec>* collisions_ = nullptr;  // owned by solver_
+  Kokkos::View<int* [3], typename Exec::memory_space> tris_;
 };
 
 }  // namespace weft

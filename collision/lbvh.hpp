@@ -8,7 +8,7 @@
 //
 // Traversal is stackless: every node stores its rope (the next node in depth-first, left-first order once
 // its subtree is done), so no stack can overflow whatever the tree's depth, and the leaves are met in
-// tree order. (With unique 64-bit keys the depth is at most 65 anyway: prefix lengths grow down the tree.)
+// tree order. (With unique 64-bit keys the depth is at most 64 anyway: prefix lengths grow down the tree.)
 #pragma once
 #include "collision/aabb.hpp"
 #include "collision/morton.hpp"

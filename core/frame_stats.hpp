@@ -13,7 +13,8 @@ struct FrameStats {
   real max_strain = 0;      // max |length / rest - 1| over distance constraints
   real rms_speed = 0;       // m/s, over points that move
   long non_finite = 0;      // points whose position is NaN or Inf
-  long contacts = 0;        // filled by the collision stage
+  long contacts = 0;            // contacts found by the last collision pass
+  long impact_zone_points = 0;  // points smoothed at the end of the last substep
   double seconds = 0;       // wall time of the frame
 };
 

@@ -21,7 +21,15 @@ struct SolverSettings {
   Vec3 gravity{0, -9.81, 0};             // m/s^2
   Vec3 wind{0, 0, 0};                    // constant acceleration, m/s^2
   real velocity_damping = 0;             // 1/s: v <- max(0, 1 - damping h) v + h a each substep
-  bool impact_zone_smoothing = true;     // used by the collision stage
+  // Collisions (collision/): self contact among all cloth pieces and layers, contact with colliders.
+  bool self_collision = true;
+  real static_friction = 0.5;            // Vellum "static threshold", times the points' friction scales
+  real dynamic_friction = 0.5;           // Vellum "dynamic scale", times the points' dynamicfriction scales
+  real layer_shock = 4;                  // lower layers act this much heavier in contacts with higher ones
+  real parallel_edge_degrees = 10;       // self edge-edge pairs closer to parallel than this are dropped
+  bool impact_zone_smoothing = true;     // paper 2.3: Laplacian smoothing of velocities in unresolved contacts
+  real impact_zone_epsilon = 0.1;        // contacts with C < -epsilon * thickness are smoothed
+  int impact_zone_sweeps = 4;
 };
 
 // Per-point data of all cloth pieces, welded into one point set.

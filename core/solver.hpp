@@ -4,6 +4,7 @@
 #pragma once
 #include "constraints/build_rows.hpp"
 #include "core/colouring.hpp"
+#include "core/error.hpp"
 #include "core/frame_stats.hpp"
 #include "core/hash.hpp"
 #include "core/reduce.hpp"
@@ -99,6 +100,19 @@ class Solver {
   uint64_t hash_positions() const { return hash_view(exec_, state_.x); }
 
   std::vector<Vec3> positions() const { return to_host(state_.x); }
+
+  void set_state(int frame, const std::vector<Vec3>& x, const std::vector<Vec3>& v) {
+    if (x.size() != state_.x.extent(0) || v.size() != state_.v.extent(0))
+      throw InputError("saved state has " + std::to_string(x.size()) + " points, the scene " +
+                       std::to_string(state_.x.extent(0)));
+    Kokkos::deep_copy(state_.x, upload(x, "weft::x_in"));
+    Kokkos::deep_copy(state_.v, upload(v, "weft::v_in"));
+    frame_ = frame;
+    // Animated goals and colliders at the new frame, as an uninterrupted run would have them.
+    const real t = real(frame_ - st_.frame_start);
+    kernels::interpolate_animation(exec_, target_frames_, targets_, t);
+    kernels::interpolate_animation(exec_, collider_frames_, state_.collider_x, t);
+  }
   std::vector<Vec3> velocities() const { return to_host(state_.v); }
 
   // Statistics of the current state.

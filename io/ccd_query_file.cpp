@@ -83,7 +83,8 @@ CcdKind ccd_kind_from_path(const std::string& path) {
   const std::string stem = p.stem().string();
   const auto suffix = [&](const char* s) {  // name ends in s, not as part of a longer word ("coffee")
     const size_t n = stem.size();
-    return n >= 2 && stem.compare(n - 2, 2, s) == 0 && (n == 2 || !std::isalpha(static_cast<unsigned char>(stem[n - 3])));
+    return n >= 2 && stem.compare(n - 2, 2, s) == 0 &&
+           (n == 2 || !std::isalpha(static_cast<unsigned char>(stem[n - 3])));
   };
   if (suffix("vf")) return CcdKind::VertexFace;
   if (suffix("ee")) return CcdKind::EdgeEdge;
@@ -91,7 +92,9 @@ CcdKind ccd_kind_from_path(const std::string& path) {
     if (d.filename() == "vertex-face") return CcdKind::VertexFace;
     if (d.filename() == "edge-edge") return CcdKind::EdgeEdge;
   }
-  fail(path, 0, "cannot tell vertex-face from edge-edge (expected a vertex-face/ or edge-edge/ folder, or a name ending in vf or ee)");
+  fail(path, 0,
+       "cannot tell vertex-face from edge-edge (expected a vertex-face/ or edge-edge/ folder, or a name ending "
+       "in vf or ee)");
 }
 
 CcdQueryFile read_ccd_query_file(const std::string& path) {
@@ -116,7 +119,8 @@ CcdQueryFile read_ccd_query_file(const std::string& path) {
     const long n = static_cast<long>(fields.size());
     if (n != 6 && n != 7) fail(path, line, std::to_string(n) + " columns (expected 6, or 7 with the truth)");
     if (columns == 0) columns = n;
-    if (n != columns) fail(path, line, std::to_string(n) + " columns where earlier rows have " + std::to_string(columns));
+    if (n != columns)
+      fail(path, line, std::to_string(n) + " columns where earlier rows have " + std::to_string(columns));
     Vec3 x;
     for (int i = 0; i < 3; ++i)
       x[i] = parse_numerator(fields[2 * i], path, line) / parse_denominator(fields[2 * i + 1], path, line);

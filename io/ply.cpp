@@ -253,6 +253,11 @@ TriMesh read_ply(const std::string& path) {
   }
   if (!vertex) throw FormatError(path + ": no 'vertex' element");
   if (vertex->count > INT_MAX) throw FormatError(path + ": element 'vertex': too many vertices");
+  // Every vertex and face takes at least a byte, so a count beyond the file's size is not allocated.
+  for (const Element* e : {vertex, face})
+    if (e && e->count > long(bytes.size() - pos))
+      throw FormatError(path + ": element '" + e->name + "': " + std::to_string(e->count) + " instances cannot fit in " +
+                        std::to_string(bytes.size() - pos) + " bytes of data");
   for (const char* axis : {"x", "y", "z"}) {
     Property* found = nullptr;
     for (Property& p : vertex->properties)

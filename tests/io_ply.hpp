@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -142,6 +143,9 @@ TEST(WEFT_TEST_SUITE, ply_malformed_files_fail_naming_file_and_element) {
       {"noformat.ply", "ply\nelement vertex 0\nproperty float x\nend_header\n", "no format line"},
       {"keyword.ply", "ply\nformat ascii 1.0\nelemnt vertex 0\nend_header\n", "header line 3: unknown keyword 'elemnt'"},
       {"notply.ply", "solid cube\n", "not a PLY file"},
+      {"huge.ply", "ply\nformat ascii 1.0\nelement vertex 2000000000\nproperty float x\nproperty float y\n"
+                   "property float z\nend_header\n0 0 0\n",
+       "element 'vertex': 2000000000 instances cannot fit"},
       {"binshort.ply",
        "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty double x\nproperty double y\n"
        "property double z\nend_header\n" + le(1.0) + le(2.0),

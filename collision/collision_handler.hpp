@@ -1,0 +1,233 @@
+// The collision stage of the frame loop (paper sec. 2-3): LBVH broad phase over swept, thickness-inflated
+// triangle boxes (built at the start of a substep, refit every pass), narrow phase on representative
+// features with CCD and proximity, contacts coloured and projected in the same Gauss-Seidel iterations as
+// the cloth, friction, and impact-zone smoothing of velocities at the end of the substep.
+#pragma once
+#include "collision/aabb.hpp"
+#include "collision/contact_colouring.hpp"
+#include "collision/impact_zone.hpp"
+#include "collision/lbvh.hpp"
+#include "collision/narrow_phase.hpp"
+#include "collision/representative.hpp"
+#include "core/scene.hpp"
+#include "core/solver_state.hpp"
+
+#include <map>
+
+namespace weft {
+
+template <class Exec>
+class CollisionHandler final : public CollisionStage<Exec> {
+ public:
+  using Mem = typename Exec::memory_space;
+  template <class T>
+  using View = Kokkos::View<T, Mem>;
+
+  struct Stats {
+    long contacts = 0, colours = 0;
+    ImpactZoneStats zones;
+  };
+
+  explicit CollisionHandler(const Scene& s) : cloth_bvh_(Exec()), collider_bvh_(Exec()) {
+    const SolverSettings& st = s.settings;
+    ns_.static_friction = st.static_friction;
+    ns_.dynamic_friction = st.dynamic_friction;
+    ns_.layer_shock = st.layer_shock;
+    const real rad = st.parallel_edge_degrees * pi / 180;
+    ns_.min_sin_angle = sin_small(rad);
+    self_ = st.self_collision;
+    smoothing_ = st.impact_zone_smoothing;
+    epsilon_ = st.impact_zone_epsilon;
+    sweeps_ = st.impact_zone_sweeps;
+    npoints_ = long(s.points.size());
+    // Cloth side.
+    cloth_tris_ = upload_tris(s.triangles);
+    cloth_rmask_ = upload(representative_features(s.triangles, int(s.points.size())), "weft::cloth_rmask");
+    cloth_th_ = upload(s.points.thickness, "weft::thickness");
+    cloth_fr_ = upload(s.points.friction, "weft::friction");
+    cloth_dfr_ = upload(s.points.dynamic_friction, "weft::dfriction");
+    cloth_layer_ = upload(s.points.layer, "weft::layer");
+    std::vector<real> margin(s.triangles.size());
+    for (size_t t = 0; t < s.triangles.size(); ++t) {
+      real m = 0;
+      for (int k = 0; k < 3; ++k) m = std::max(m, s.points.thickness[s.triangles[t][k]]);
+      margin[t] = ns_.detect_scale * m;
+    }
+    cloth_margin_ = upload(margin, "weft::cloth_margin");
+    cloth_boxes_ = View<Aabb*>("weft::cloth_boxes", s.triangles.size());
+    // Collider side: all colliders' triangles over the concatenated vertices; one thickness and friction
+    // for all (the largest thickness, the first collider's friction) keeps the kernels simple.
+    std::vector<std::array<int, 3>> ct;
+    int off = 0;
+    real th = 0, fr = s.colliders.empty() ? 1.0 : s.colliders[0].friction;
+    for (const Collider& c : s.colliders) {
+      for (const auto& t : c.triangles) ct.push_back({t[0] + off, t[1] + off, t[2] + off});
+      off += int(c.motion.frames[0].size());
+      th = std::max(th, c.thickness);
+    }
+    collider_th_ = th;
+    collider_fr_ = fr;
+    collider_tris_ = upload_tris(ct);
+    collider_rmask_ = upload(representative_features(ct, off), "weft::collider_rmask");
+    collider_nb_ = upload_neighbours(ct);
+    collider_boxes_ = View<Aabb*>("weft::collider_boxes", ct.size());
+  }
+
+  const Stats& stats() const { return stats_; }
+
+  void begin_substep(const SolverState<Exec>& s, real) override {
+    update_boxes(s);
+    cloth_bvh_.build(cloth_boxes_);
+    if (collider_boxes_.extent(0) > 0) collider_bvh_.build(collider_boxes_);
+  }
+
+  void pass(const SolverState<Exec>& s, real) override {
+    update_boxes(s);
+    cloth_bvh_.refit(cloth_boxes_);
+    if (collider_boxes_.extent(0) > 0) collider_bvh_.refit(collider_boxes_);
+    const SideMesh<Mem> cloth = cloth_side(s);
+    long n = 0;
+    if (self_) n += narrow(cloth, cloth, /*self*/ true, n);
+    if (collider_boxes_.extent(0) > 0) n += narrow(cloth, collider_side(s), false, n);
+    ncontacts_ = n;
+    offsets_ = colouring_.colour(s.exec, contacts_, n, npoints_);
+    stats_.contacts = n;
+    stats_.colours = long(offsets_.size()) - 1;
+  }
+
+  void project(const SolverState<Exec>& s, real) override {
+    auto c = contacts_;
+    auto x = s.x, xs = s.x_start;
+    auto w = s.w;
+    auto cx = s.collider_x, cxs = s.collider_x_start;
+    for (size_t k = 0; k + 1 < offsets_.size(); ++k)
+      Kokkos::parallel_for("weft::project_contacts", Kokkos::RangePolicy<Exec>(s.exec, offsets_[k], offsets_[k + 1]),
+                           KOKKOS_LAMBDA(long i) { project_contact(c(i), x, xs, w, cx, cxs); });
+  }
+
+  void end_substep(const SolverState<Exec>& s, real) override {
+    if (!smoothing_) return;
+    stats_.zones = zones_.smooth(s.exec, contacts_, ncontacts_, s.x, s.collider_x, s.v, epsilon_, sweeps_);
+  }
+
+  // Narrow phase of the pairs between sides A and B, contacts appended at `first`; returns how many.
+  long narrow(const SideMesh<Mem>& A, const SideMesh<Mem>& B, bool self, long first) {
+    NarrowSettings ns = ns_;
+    ns.self = self;
+    long npairs = 0;
+    if (self) npairs = cloth_bvh_.query_self(KeepAllPairs{}, pairs_);
+    else npairs = collider_bvh_.query(View<const Aabb*>(cloth_boxes_), KeepAllPairs{}, pairs_);
+    if (npairs == 0) return 0;
+    grow(masks_, npairs);
+    grow(counts_, npairs);
+    auto pairs = pairs_;
+    auto masks = masks_;
+    auto counts = counts_;
+    const Exec exec;
+    Kokkos::parallel_for("weft::narrow_mask", Kokkos::RangePolicy<Exec>(exec, 0, npairs), KOKKOS_LAMBDA(long i) {
+      const uint32_t m = feature_mask(A, pairs(i).first, B, pairs(i).second, ns);
+      masks(i) = m;
+      counts(i) = popcount15(m);
+    });
+    const long total = long(exclusive_scan(exec, Kokkos::subview(counts, std::make_pair(0L, npairs)), counts));
+    if (long(contacts_.extent(0)) < first + total) {  // grow, keeping what the self pass wrote
+      View<Contact*> bigger(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::contacts"), (first + total) * 3 / 2 + 64);
+      if (first > 0)
+        Kokkos::deep_copy(exec, Kokkos::subview(bigger, std::make_pair(0L, first)),
+                          Kokkos::subview(contacts_, std::make_pair(0L, first)));
+      contacts_ = bigger;
+    }
+    auto out = contacts_;
+    Kokkos::parallel_for("weft::narrow_fill", Kokkos::RangePolicy<Exec>(exec, 0, npairs), KOKKOS_LAMBDA(long i) {
+      if (masks(i)) fill_contacts(A, pairs(i).first, B, pairs(i).second, masks(i), ns, out, first + counts(i));
+    });
+    return total;
+  }
+
+ private:
+  // sin(x) for the small angle of the parallel-edge rule, from its Taylor series (no library call).
+  static real sin_small(real x) {
+    real term = x, s = x;
+    for (int k = 1; k < 12; ++k) { term = -term * x * x / real((2 * k) * (2 * k + 1)); s += term; }
+    return s;
+  }
+  template <class T>
+  View<T*> upload(const std::vector<T>& h, const char* label) const {
+    View<T*> d(std::string(label), h.size());
+    auto m = Kokkos::create_mirror_view(d);
+    for (size_t i = 0; i < h.size(); ++i) m(i) = h[i];
+    Kokkos::deep_copy(d, m);
+    return d;
+  }
+  View<int* [3]> upload_tris(const std::vector<std::array<int, 3>>& t) const {
+    View<int* [3]> d("weft::tris", t.size());
+    auto m = Kokkos::create_mirror_view(d);
+    for (size_t i = 0; i < t.size(); ++i)
+      for (int k = 0; k < 3; ++k) m(i, k) = t[i][k];
+    Kokkos::deep_copy(d, m);
+    return d;
+  }
+  // The triangle across each edge (corner k to k+1) of a collider mesh, -1 on a boundary.
+  View<int* [3]> upload_neighbours(const std::vector<std::array<int, 3>>& t) const {
+    std::map<std::pair<int, int>, std::vector<int>> edges;
+    for (int i = 0; i < int(t.size()); ++i)
+      for (int k = 0; k < 3; ++k) edges[{std::min(t[i][k], t[i][(k + 1) % 3]), std::max(t[i][k], t[i][(k + 1) % 3])}].push_back(i);
+    std::vector<std::array<int, 3>> nb(t.size(), {-1, -1, -1});
+    for (int i = 0; i < int(t.size()); ++i)
+      for (int k = 0; k < 3; ++k) {
+        const auto& tri = edges[{std::min(t[i][k], t[i][(k + 1) % 3]), std::max(t[i][k], t[i][(k + 1) % 3])}];
+        for (int o : tri)
+          if (o != i) { nb[i][k] = o; break; }
+      }
+    return upload_tris(nb);
+  }
+  template <class V>
+  static void grow(V& v, long n) {
+    if (long(v.extent(0)) < n) v = V(Kokkos::view_alloc(Kokkos::WithoutInitializing, v.label()), n + n / 2 + 16);
+  }
+
+ public:  // kernels below launch device lambdas, which CUDA allows only in public member functions
+  void update_boxes(const SolverState<Exec>& s) {
+    swept_triangle_boxes(s.exec, View<const Vec3*>(s.x_start), View<const Vec3*>(s.x), View<const int* [3]>(cloth_tris_),
+                         View<const real*>(cloth_margin_), cloth_boxes_);
+    if (collider_boxes_.extent(0) > 0)
+      swept_triangle_boxes(s.exec, View<const Vec3*>(s.collider_x_start), View<const Vec3*>(s.collider_x),
+                           View<const int* [3]>(collider_tris_), ns_.detect_scale * collider_th_, collider_boxes_);
+  }
+  SideMesh<Mem> cloth_side(const SolverState<Exec>& s) const {
+    SideMesh<Mem> m;
+    m.x = s.x; m.xs = s.x_start; m.tris = cloth_tris_; m.rmask = cloth_rmask_; m.thickness = cloth_th_;
+    m.friction = cloth_fr_; m.dfriction = cloth_dfr_; m.layer = cloth_layer_;
+    return m;
+  }
+  SideMesh<Mem> collider_side(const SolverState<Exec>& s) const {
+    SideMesh<Mem> m;
+    m.x = s.collider_x; m.xs = s.collider_x_start; m.tris = collider_tris_; m.rmask = collider_rmask_;
+    m.neighbour = collider_nb_; m.uniform_thickness = collider_th_; m.uniform_friction = collider_fr_; m.collider = true;
+    return m;
+  }
+
+ private:
+  NarrowSettings ns_;
+  bool self_ = true, smoothing_ = true;
+  real epsilon_ = 0.1;
+  int sweeps_ = 4;
+  long npoints_ = 0, ncontacts_ = 0;
+  View<int* [3]> cloth_tris_, collider_tris_, collider_nb_;
+  View<uint8_t*> cloth_rmask_, collider_rmask_;
+  View<real*> cloth_th_, cloth_fr_, cloth_dfr_, cloth_margin_;
+  View<int*> cloth_layer_;
+  real collider_th_ = 0, collider_fr_ = 1;
+  View<Aabb*> cloth_boxes_, collider_boxes_;
+  Lbvh<Exec> cloth_bvh_, collider_bvh_;
+  View<IndexPair*> pairs_{"weft::pairs", 0};
+  View<uint32_t*> masks_{"weft::masks", 0};
+  View<long*> counts_{"weft::counts", 0};
+  View<Contact*> contacts_{"weft::contacts", 0};
+  std::vector<long> offsets_{0};
+  ContactColouring<Exec> colouring_;
+  ImpactZones<Exec> zones_;
+  Stats stats_;
+};
+
+}  // namespace weft

@@ -1,0 +1,72 @@
+// A contact is a one-sided constraint C = n . sum_i b_i x_i - r >= 0 over up to four points (paper 2.2):
+// vertex-face b = (1, -u, -v, -w), edge-edge b = (1-s, s, -(1-t), -t), with n fixed while the contact lives
+// and r the two sides' thickness. Points are cloth points (index >= 0) or collider vertices (-1 - index),
+// which never move. Projection moves cloth points only, then applies static / dynamic friction.
+#pragma once
+#include "core/vec.hpp"
+
+#include <Kokkos_Core.hpp>
+
+namespace weft {
+
+enum ContactKind : int { kContactVF = 0, kContactEE = 1 };
+
+struct Contact {
+  int kind = kContactVF;
+  int p[4] = {-1, -1, -1, -1};  // cloth point i >= 0, collider vertex -1 - k
+  real b[4] = {0, 0, 0, 0};
+  Vec3 n;
+  real r = 0;             // separation to keep (sum of thicknesses)
+  real mu_s = 0, mu_d = 0;  // static and dynamic friction of the pair
+  real wscale[4] = {1, 1, 1, 1};  // layer shock: lower layers act heavier
+};
+
+KOKKOS_INLINE_FUNCTION int collider_ref(int k) { return -1 - k; }
+
+template <class XView, class CView>
+KOKKOS_INLINE_FUNCTION Vec3 contact_point_pos(int p, const XView& x, const CView& cx) {
+  return p >= 0 ? x(p) : cx(-1 - p);
+}
+
+// C at the given positions.
+template <class XView, class CView>
+KOKKOS_INLINE_FUNCTION real contact_value(const Contact& c, const XView& x, const CView& cx) {
+  Vec3 s{};
+  for (int k = 0; k < 4; ++k)
+    if (c.b[k] != 0) s += c.b[k] * contact_point_pos(c.p[k], x, cx);
+  return dot(c.n, s) - c.r;
+}
+
+// Projects one contact (Gauss-Seidel, compliance 0) and applies position-based friction: tangential motion
+// of the contact since the start of the substep is removed while it is below mu_s times the normal
+// correction, and reduced by mu_d times it otherwise.
+template <class XView, class WView, class CView>
+KOKKOS_INLINE_FUNCTION void project_contact(const Contact& c, const XView& x, const XView& xs, const WView& w,
+                                            const CView& cx, const CView& cxs) {
+  const real C = contact_value(c, x, cx);
+  if (!(C < 0)) return;
+  real wk[4] = {0, 0, 0, 0}, denom = 0;
+  for (int k = 0; k < 4; ++k) {
+    wk[k] = c.p[k] >= 0 ? w(c.p[k]) / c.wscale[k] : 0.0;
+    denom += wk[k] * c.b[k] * c.b[k];
+  }
+  if (!(denom > 0)) return;
+  const real dl = -C / denom;
+  for (int k = 0; k < 4; ++k)
+    if (wk[k] > 0) x(c.p[k]) += (wk[k] * c.b[k] * dl) * c.n;
+  if (!(c.mu_s > 0 || c.mu_d > 0)) return;
+  // Relative displacement of the two sides over the substep, tangential part.
+  Vec3 d{};
+  for (int k = 0; k < 4; ++k)
+    if (c.b[k] != 0)
+      d += c.b[k] * (contact_point_pos(c.p[k], x, cx) - contact_point_pos(c.p[k], xs, cxs));
+  const Vec3 dt = d - dot(d, c.n) * c.n;
+  const real len = norm(dt), dn = -C;
+  if (!(len > 0)) return;
+  const real keep = len < c.mu_s * dn ? 0.0 : max_(real(0), 1 - c.mu_d * dn / len);
+  const Vec3 corr = (keep - 1) * dt;  // removes (1 - keep) of the tangential motion
+  for (int k = 0; k < 4; ++k)
+    if (wk[k] > 0) x(c.p[k]) += (wk[k] * c.b[k] / denom) * corr;
+}
+
+}  // namespace weft

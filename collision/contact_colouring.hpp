@@ -1,0 +1,103 @@
+// Colours contacts on the device so that no two contacts of one colour move the same cloth point
+// (Jones-Plassmann): each round, every uncoloured contact whose priority key is the largest among the
+// uncoloured contacts at each of its cloth points takes the round's colour. Keys are a hash of the contact
+// index joined with the index (unique), and the per-point maximum is an integer atomic max: the result
+// depends only on the contact list. Contacts are then sorted by colour (unique keys colour, index).
+#pragma once
+#include "collision/contact.hpp"
+#include "core/hash.hpp"
+#include "core/scan.hpp"
+#include "core/sort.hpp"
+
+#include <Kokkos_Core.hpp>
+#include <vector>
+
+namespace weft {
+
+template <class Exec>
+class ContactColouring {
+ public:
+  using Mem = typename Exec::memory_space;
+
+  // Reorders contacts(0..n) by colour; returns the colour ranges [offsets[c], offsets[c+1]).
+  std::vector<long> colour(const Exec& exec, Kokkos::View<Contact*, Mem>& contacts, long n, long points) {
+    std::vector<long> offsets{0};
+    if (n == 0) return offsets;
+    grow(owner_, points);
+    grow(colour_, n);
+    grow(keys_, n);
+    grow(order_, n);
+    grow(sorted_, n);
+    auto owner = owner_;
+    auto col = colour_;
+    auto c = contacts;
+    Kokkos::deep_copy(exec, owner, 0ull);
+    Kokkos::deep_copy(exec, Kokkos::subview(col, std::make_pair(0L, n)), -1);
+    int rounds = 0;
+    for (long left = n; left > 0; ++rounds) {
+      const int round = rounds;
+      Kokkos::parallel_for("weft::jp_claim", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
+        if (col(i) >= 0) return;
+        const uint64_t key = priority(i);
+        for (int k = 0; k < 4; ++k)
+          if (c(i).p[k] >= 0 && c(i).b[k] != 0) Kokkos::atomic_fetch_max(&owner(c(i).p[k]), key);
+      });
+      Kokkos::parallel_for("weft::jp_take", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
+        if (col(i) >= 0) return;
+        const uint64_t key = priority(i);
+        bool win = true;
+        for (int k = 0; k < 4; ++k)
+          if (c(i).p[k] >= 0 && c(i).b[k] != 0) win = win && owner(c(i).p[k]) == key;
+        if (win) col(i) = round;
+      });
+      Kokkos::parallel_for("weft::jp_release", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
+        for (int k = 0; k < 4; ++k)
+          if (c(i).p[k] >= 0) owner(c(i).p[k]) = 0;  // same value from every writer
+      });
+      left = 0;
+      Kokkos::parallel_reduce(
+          "weft::jp_left", Kokkos::RangePolicy<Exec>(exec, 0, n),
+          KOKKOS_LAMBDA(long i, long& acc) { acc += col(i) < 0 ? 1 : 0; }, left);
+    }
+    // Sort by (colour, index) and count each colour.
+    auto keys = keys_;
+    auto order = order_;
+    Kokkos::parallel_for("weft::contact_keys", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
+      keys(i) = uint64_t(col(i)) << 32 | uint64_t(i);
+      order(i) = uint32_t(i);
+    });
+    auto ks = Kokkos::subview(keys, std::make_pair(0L, n));
+    auto os = Kokkos::subview(order, std::make_pair(0L, n));
+    Kokkos::View<uint64_t*, Mem> kv = ks;
+    Kokkos::View<uint32_t*, Mem> ov = os;
+    radix_sort_pairs(exec, kv, ov, 64);
+    auto sorted = sorted_;
+    Kokkos::parallel_for("weft::contact_gather", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                         KOKKOS_LAMBDA(long i) { sorted(i) = c(ov(i)); });
+    Kokkos::View<long*, Mem> first("weft::colour_first", rounds + 1);
+    Kokkos::parallel_for("weft::colour_bounds", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
+      const long ci = long(kv(i) >> 32);
+      if (i == 0 || long(kv(i - 1) >> 32) != ci) first(ci) = i;
+      if (i == n - 1) first(ci + 1) = n;
+    });
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), first);
+    offsets.assign(h.data(), h.data() + rounds + 1);
+    std::swap(contacts, sorted_);
+    return offsets;
+  }
+
+ private:
+  KOKKOS_INLINE_FUNCTION static uint64_t priority(long i) {
+    return 0x8000000000000000ull | (splitmix64(uint64_t(i)) & 0x7FFFFFFF00000000ull) | uint64_t(i);  // never 0
+  }
+  template <class V>
+  static void grow(V& v, long n) {
+    if (long(v.extent(0)) < n) v = V(Kokkos::view_alloc(Kokkos::WithoutInitializing, v.label()), n + n / 2 + 16);
+  }
+  Kokkos::View<uint64_t*, Mem> owner_{"weft::jp_owner", 0}, keys_{"weft::jp_keys", 0};
+  Kokkos::View<int*, Mem> colour_{"weft::jp_colour", 0};
+  Kokkos::View<uint32_t*, Mem> order_{"weft::jp_order", 0};
+  Kokkos::View<Contact*, Mem> sorted_{"weft::contacts_sorted", 0};
+};
+
+}  // namespace weft

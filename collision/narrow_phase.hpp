@@ -1,0 +1,226 @@
+// Narrow phase for one triangle pair: the feature pairs its representative features produce (paper sec. 3,
+// "R-Triangle"), each tested by proximity at the current positions and by continuous collision detection
+// over the substep. Bits of the result: 0-2 vertex of A vs face B, 3-5 vertex of B vs face A, 6-14 edge of A
+// vs edge of B (6 + 3 ka + kb). Features sharing a point are never paired.
+#pragma once
+#include "collision/ccd.hpp"
+#include "collision/ccd_proximity.hpp"
+#include "collision/contact.hpp"
+
+#include <Kokkos_Core.hpp>
+
+namespace weft {
+
+// One side of a pair: a cloth or collider mesh at the start (xs) and end (x) of the substep.
+template <class Mem>
+struct SideMesh {
+  Kokkos::View<const Vec3*, Mem> x, xs;
+  Kokkos::View<const int* [3], Mem> tris;
+  Kokkos::View<const uint8_t*, Mem> rmask;       // representative features per triangle
+  Kokkos::View<const real*, Mem> thickness;      // per point (cloth) or empty (collider: `uniform`)
+  Kokkos::View<const real*, Mem> friction, dfriction;
+  Kokkos::View<const int*, Mem> layer;
+  Kokkos::View<const int* [3], Mem> neighbour;   // collider: triangle across each edge (-1 none)
+  real uniform_thickness = 0, uniform_friction = 1;
+  bool collider = false;
+
+  KOKKOS_INLINE_FUNCTION real th(int v) const { return collider ? uniform_thickness : thickness(v); }
+  KOKKOS_INLINE_FUNCTION real fr(int v) const { return collider ? uniform_friction : friction(v); }
+  KOKKOS_INLINE_FUNCTION real dfr(int v) const { return collider ? uniform_friction : dfriction(v); }
+  KOKKOS_INLINE_FUNCTION int ref(int v) const { return collider ? collider_ref(v) : v; }
+  KOKKOS_INLINE_FUNCTION Vec3 face_normal(int t) const {
+    const Vec3 a = x(tris(t, 0)), b = x(tris(t, 1)), c = x(tris(t, 2));
+    return normalized(cross(b - a, c - a));
+  }
+};
+
+struct NarrowSettings {
+  real detect_scale = 1.25;           // proximity contacts within this times the separation
+  real min_sin_angle = 0.17364817766693033;  // sin(10 deg): self edge-edge pairs closer to parallel are dropped
+  real static_friction = 0.5, dynamic_friction = 0.5;
+  real layer_shock = 4;
+  bool self = true;                   // both sides cloth (start-side normals, parallel edge rule)
+  CcdSettings ccd{1e-6, 2000};
+};
+
+namespace narrow_detail {
+
+KOKKOS_INLINE_FUNCTION bool shares(int a, int b, int c, int d) { return a == c || a == d || b == c || b == d; }
+
+template <class Mem>
+KOKKOS_INLINE_FUNCTION bool vf_hit(const SideMesh<Mem>& P, int p, const SideMesh<Mem>& F, int f, real r,
+                                   const NarrowSettings& s) {
+  const int a = F.tris(f, 0), b = F.tris(f, 1), c = F.tris(f, 2);
+  real u, v, w;
+  const real d2 = point_triangle_distance2(P.x(p), F.x(a), F.x(b), F.x(c), u, v, w);
+  const real lim = s.detect_scale * r;
+  if (d2 < lim * lim) return true;
+  return ccd_vertex_face(P.xs(p), F.xs(a), F.xs(b), F.xs(c), P.x(p), F.x(a), F.x(b), F.x(c), r, s.ccd).hit;
+}
+
+KOKKOS_INLINE_FUNCTION bool not_parallel(Vec3 ea, Vec3 eb, real min_sin) {
+  const real c = norm(cross(ea, eb));
+  return c > min_sin * norm(ea) * norm(eb);
+}
+
+template <class Mem>
+KOKKOS_INLINE_FUNCTION bool ee_hit(const SideMesh<Mem>& A, int a0, int a1, const SideMesh<Mem>& B, int b0, int b1,
+                                   real r, const NarrowSettings& s) {
+  if (s.self && !(not_parallel(A.x(a1) - A.x(a0), B.x(b1) - B.x(b0), s.min_sin_angle) &&
+                  not_parallel(A.xs(a1) - A.xs(a0), B.xs(b1) - B.xs(b0), s.min_sin_angle)))
+    return false;
+  real sa, tb;
+  const real d2 = segment_segment_distance2(A.x(a0), A.x(a1), B.x(b0), B.x(b1), sa, tb);
+  const real lim = s.detect_scale * r;
+  if (d2 < lim * lim) return true;
+  return ccd_edge_edge(A.xs(a0), A.xs(a1), B.xs(b0), B.xs(b1), A.x(a0), A.x(a1), B.x(b0), B.x(b1), r, s.ccd).hit;
+}
+
+template <class Mem>
+KOKKOS_INLINE_FUNCTION real face_th(const SideMesh<Mem>& F, int f) {
+  return max_(F.th(F.tris(f, 0)), max_(F.th(F.tris(f, 1)), F.th(F.tris(f, 2))));
+}
+
+}  // namespace narrow_detail
+
+// Which feature pairs of triangles A (side SA) and B (side SB) are in contact.
+template <class Mem>
+KOKKOS_INLINE_FUNCTION uint32_t feature_mask(const SideMesh<Mem>& SA, int A, const SideMesh<Mem>& SB, int B,
+                                             const NarrowSettings& s) {
+  using namespace narrow_detail;
+  const bool same = !SA.collider && !SB.collider;  // both cloth: shared points possible
+  uint32_t m = 0;
+  const int ta[3] = {SA.tris(A, 0), SA.tris(A, 1), SA.tris(A, 2)};
+  const int tb[3] = {SB.tris(B, 0), SB.tris(B, 1), SB.tris(B, 2)};
+  const uint8_t ra = SA.rmask(A), rb = SB.rmask(B);
+  for (int k = 0; k < 3; ++k) {
+    if ((ra >> k) & 1) {
+      const int p = ta[k];
+      if (!(same && (p == tb[0] || p == tb[1] || p == tb[2])) && vf_hit(SA, p, SB, B, SA.th(p) + face_th(SB, B), s))
+        m |= 1u << k;
+    }
+    if ((rb >> k) & 1) {
+      const int p = tb[k];
+      if (!(same && (p == ta[0] || p == ta[1] || p == ta[2])) && vf_hit(SB, p, SA, A, SB.th(p) + face_th(SA, A), s))
+        m |= 1u << (3 + k);
+    }
+  }
+  for (int ka = 0; ka < 3; ++ka) {
+    if (!((ra >> (3 + ka)) & 1)) continue;
+    const int a0 = ta[ka], a1 = ta[(ka + 1) % 3];
+    for (int kb = 0; kb < 3; ++kb) {
+      if (!((rb >> (3 + kb)) & 1)) continue;
+      const int b0 = tb[kb], b1 = tb[(kb + 1) % 3];
+      if (same && shares(a0, a1, b0, b1)) continue;
+      const real r = max_(SA.th(a0), SA.th(a1)) + max_(SB.th(b0), SB.th(b1));
+      if (ee_hit(SA, a0, a1, SB, b0, b1, r, s)) m |= 1u << (6 + 3 * ka + kb);
+    }
+  }
+  return m;
+}
+
+namespace narrow_detail {
+
+// Friction and layer shock of a contact between point sets of the two sides.
+template <class Mem>
+KOKKOS_INLINE_FUNCTION void finish_contact(Contact& c, const SideMesh<Mem>& S0, int v0, const SideMesh<Mem>& S1, int v1,
+                                           bool first_is_s0, const NarrowSettings& s) {
+  c.mu_s = s.static_friction * S0.fr(v0) * S1.fr(v1);
+  c.mu_d = s.dynamic_friction * S0.dfr(v0) * S1.dfr(v1);
+  if (!S0.collider && !S1.collider && s.layer_shock > 1) {
+    const int l0 = S0.layer(v0), l1 = S1.layer(v1);
+    // Slots of side 0 are those with b > 0 when first_is_s0 (the "a" side), else b < 0.
+    for (int k = 0; k < 4; ++k) {
+      const bool side0 = first_is_s0 ? c.b[k] > 0 : c.b[k] < 0;
+      if ((side0 && l0 < l1) || (!side0 && l1 < l0)) c.wscale[k] = s.layer_shock;
+    }
+  }
+}
+
+// Vertex p of side P against face f of side F.
+template <class Mem>
+KOKKOS_INLINE_FUNCTION Contact make_vf(const SideMesh<Mem>& P, int p, const SideMesh<Mem>& F, int f, const NarrowSettings& s) {
+  const int a = F.tris(f, 0), b = F.tris(f, 1), c3 = F.tris(f, 2);
+  real u, v, w;
+  point_triangle_distance2(P.x(p), F.x(a), F.x(b), F.x(c3), u, v, w);
+  Contact c;
+  c.kind = kContactVF;
+  c.p[0] = P.ref(p); c.p[1] = F.ref(a); c.p[2] = F.ref(b); c.p[3] = F.ref(c3);
+  c.b[0] = 1; c.b[1] = -u; c.b[2] = -v; c.b[3] = -w;
+  c.r = P.th(p) + face_th(F, f);
+  Vec3 n = F.face_normal(f);
+  if (!F.collider) {  // cloth faces are two-sided: keep the side the point started on
+    const Vec3 d0 = P.xs(p) - (u * F.xs(a) + v * F.xs(b) + w * F.xs(c3));
+    if (dot(n, d0) < 0) n = -n;
+  }
+  c.n = n;
+  finish_contact(c, P, p, F, a, true, s);
+  return c;
+}
+
+// The collider edge (e0, e1) of triangle f, edge k: its dihedral normal (mean of the two face normals).
+template <class Mem>
+KOKKOS_INLINE_FUNCTION Vec3 dihedral_normal(const SideMesh<Mem>& C, int f, int k) {
+  const Vec3 n0 = C.face_normal(f);
+  const int nb = C.neighbour(f, k);
+  if (nb < 0) return n0;
+  const Vec3 m = n0 + C.face_normal(nb);
+  const real l = norm(m);
+  return l > 0 ? m / l : n0;
+}
+
+// Edge (a0, a1) of side SA, triangle A, edge ka, against edge (b0, b1) of side SB, triangle B, edge kb.
+template <class Mem>
+KOKKOS_INLINE_FUNCTION Contact make_ee(const SideMesh<Mem>& SA, int A, int ka, const SideMesh<Mem>& SB, int B, int kb,
+                                       const NarrowSettings& s) {
+  const int a0 = SA.tris(A, ka), a1 = SA.tris(A, (ka + 1) % 3), b0 = SB.tris(B, kb), b1 = SB.tris(B, (kb + 1) % 3);
+  real sa, tb;
+  segment_segment_distance2(SA.x(a0), SA.x(a1), SB.x(b0), SB.x(b1), sa, tb);
+  Contact c;
+  c.kind = kContactEE;
+  c.p[0] = SA.ref(a0); c.p[1] = SA.ref(a1); c.p[2] = SB.ref(b0); c.p[3] = SB.ref(b1);
+  c.b[0] = 1 - sa; c.b[1] = sa; c.b[2] = -(1 - tb); c.b[3] = -tb;
+  c.r = max_(SA.th(a0), SA.th(a1)) + max_(SB.th(b0), SB.th(b1));
+  Vec3 n;
+  if (SB.collider) {
+    n = dihedral_normal(SB, B, kb);  // paper 2.2: the collider edge's dihedral normal, pointing out of it
+  } else if (SA.collider) {
+    n = -dihedral_normal(SA, A, ka);
+  } else {
+    n = normalized(cross(SA.x(a1) - SA.x(a0), SB.x(b1) - SB.x(b0)));
+    const Vec3 d0 = ((1 - sa) * SA.xs(a0) + sa * SA.xs(a1)) - ((1 - tb) * SB.xs(b0) + tb * SB.xs(b1));
+    if (dot(n, d0) < 0) n = -n;  // sign from the start of the substep
+  }
+  c.n = n;
+  finish_contact(c, SA, a0, SB, b0, true, s);
+  return c;
+}
+
+}  // namespace narrow_detail
+
+// Writes the contacts of a pair's mask, in bit order, starting at out(first).
+template <class Mem, class OutView>
+KOKKOS_INLINE_FUNCTION void fill_contacts(const SideMesh<Mem>& SA, int A, const SideMesh<Mem>& SB, int B, uint32_t m,
+                                          const NarrowSettings& s, const OutView& out, long first) {
+  using namespace narrow_detail;
+  long o = first;
+  for (int bit = 0; bit < 15; ++bit) {
+    if (!((m >> bit) & 1u)) continue;
+    if (bit < 3) out(o++) = make_vf(SA, SA.tris(A, bit), SB, B, s);
+    else if (bit < 6) {
+      Contact c = make_vf(SB, SB.tris(B, bit - 3), SA, A, s);
+      out(o++) = c;
+    } else {
+      const int e = bit - 6;
+      out(o++) = make_ee(SA, A, e / 3, SB, B, e % 3, s);
+    }
+  }
+}
+
+KOKKOS_INLINE_FUNCTION int popcount15(uint32_t m) {
+  int c = 0;
+  for (int b = 0; b < 15; ++b) c += (m >> b) & 1u;
+  return c;
+}
+
+}  // namespace weft

@@ -1,0 +1,72 @@
+// The built-in collision scenes stay intersection-free, keep cloth out of colliders, and settle.
+#include "io/builtin_scenes.hpp"
+#include "tests/solver_scene_fixture.hpp"
+
+namespace {
+
+using weft::real;
+using weft::Vec3;
+
+TEST(WEFT_TEST_SUITE, drape_on_sphere_has_no_intersections_and_stays_outside) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  weft::Scene s = weft::io::make_builtin_scene("drape-sphere", {12});
+  weft::SimulationOn<Exec> sim(s);
+  long max_contacts = 0;
+  for (int f = 0; f < 24; ++f) {
+    const weft::FrameStats fs = sim.step_frame();
+    ASSERT_EQ(fs.non_finite, 0);
+    max_contacts = std::max(max_contacts, fs.contacts);
+    if (f % 6 == 5) ASSERT_EQ(sim.intersections(), 0) << "frame " << fs.frame;
+    for (const Vec3& p : sim.positions())  // sphere: centre (0, 0.4, 0), radius 0.3 (faceted: allow 2 mm)
+      ASSERT_GT(weft::norm(p - Vec3{0, 0.4, 0}), 0.3 - 0.002) << "frame " << fs.frame;
+  }
+  EXPECT_GT(max_contacts, 0);
+}
+
+TEST(WEFT_TEST_SUITE, fast_collider_never_leaves_cloth_inside_the_box) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  weft::Scene s = weft::io::make_builtin_scene("fast-collider", {10});
+  weft::SimulationOn<Exec> sim(s);
+  for (int f = 0; f < 10; ++f) {
+    const weft::FrameStats fs = sim.step_frame();
+    ASSERT_EQ(fs.non_finite, 0);
+    const real z = -1.0 + 10.0 * real(fs.frame - s.settings.frame_start) / s.settings.fps;
+    for (const Vec3& p : sim.positions()) {
+      const bool inside = p.x > -0.1 + 1e-3 && p.x < 0.1 - 1e-3 && p.y > 0.5 + 1e-3 && p.y < 0.7 - 1e-3 &&
+                          p.z > z - 0.1 + 1e-3 && p.z < z + 0.1 - 1e-3;
+      ASSERT_FALSE(inside) << "frame " << fs.frame << " point (" << p.x << ", " << p.y << ", " << p.z << ")";
+    }
+  }
+  EXPECT_EQ(sim.intersections(), 0);
+}
+
+real settled_rms_speed(bool smoothing) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  weft::Scene s = weft::io::make_builtin_scene("layer-stack", {8});
+  s.settings.impact_zone_smoothing = smoothing;
+  weft::SimulationOn<Exec> sim(s);
+  weft::FrameStats fs;
+  for (int f = 0; f < 72; ++f) {
+    fs = sim.step_frame();
+    EXPECT_EQ(fs.non_finite, 0);
+  }
+  EXPECT_EQ(sim.intersections(), 0);
+  return fs.rms_speed;
+}
+
+TEST(WEFT_TEST_SUITE, layer_stack_settles_and_smoothing_removes_jitter) {
+  const real on = settled_rms_speed(true), off = settled_rms_speed(false);
+  std::printf("layer-stack rms speed after 3 s: smoothing on %.3e m/s, off %.3e m/s\n", on, off);
+  EXPECT_LT(on, 1e-3);
+  EXPECT_GT(off, on);
+}
+
+TEST(WEFT_TEST_SUITE, collision_scene_hash_is_pinned) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  weft::Scene s = weft::io::make_builtin_scene("drape-sphere", {8});
+  uint64_t h = 0;
+  weft::test::run_frames<Exec>(s, 12, &h);
+  EXPECT_EQ(weft::hash_hex(h), "97b2330f6814f4ba");
+}
+
+}  // namespace
