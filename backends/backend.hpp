@@ -26,4 +26,7 @@ class Runtime {
 // Human-readable lines about the devices and host threads this build can use.
 std::vector<std::string> describe_devices();
 
+// Bytes in use on the CUDA device (all processes), or -1 without CUDA.
+long device_memory_used_bytes();
+
 }  // namespace weft

@@ -25,4 +25,10 @@ std::vector<std::string> describe_cuda_devices() {
   return r;
 }
 
+long device_memory_used_bytes() {
+  size_t free_b = 0, total_b = 0;
+  if (cudaMemGetInfo(&free_b, &total_b) != cudaSuccess) { cudaGetLastError(); return -1; }
+  return long(total_b - free_b);
+}
+
 }  // namespace weft

@@ -4,4 +4,5 @@
 
 namespace weft {
 std::vector<std::string> describe_cuda_devices() { return {}; }
+long device_memory_used_bytes() { return -1; }
 }  // namespace weft

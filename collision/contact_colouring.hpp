@@ -6,7 +6,7 @@
 #pragma once
 #include "collision/contact.hpp"
 #include "core/hash.hpp"
-#include "core/scan.hpp"
+#include "core/compact.hpp"
 #include "core/sort.hpp"
 
 #include <Kokkos_Core.hpp>
@@ -28,36 +28,46 @@ class ContactColouring {
     grow(keys_, n);
     grow(order_, n);
     grow(sorted_, n);
+    grow(todo_, n);
+    grow(spare_, n);
+    grow(next_, n + 1);
     auto owner = owner_;
     auto col = colour_;
     auto c = contacts;
     Kokkos::deep_copy(exec, owner, 0ull);
-    Kokkos::deep_copy(exec, Kokkos::subview(col, std::make_pair(0L, n)), -1);
+    auto todo = todo_, spare = spare_;
+    auto next = next_;
+    Kokkos::parallel_for("weft::jp_init", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
+      col(i) = -1;
+      todo(i) = uint32_t(i);
+    });
+    // Keys carry the round in their top bits, so a point's stale claim from an earlier round always loses
+    // and owners never need resetting; the uncoloured contacts are compacted after every round.
     int rounds = 0;
     for (long left = n; left > 0; ++rounds) {
       const int round = rounds;
-      Kokkos::parallel_for("weft::jp_claim", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
-        if (col(i) >= 0) return;
-        const uint64_t key = priority(i);
+      Kokkos::parallel_for("weft::jp_claim", Kokkos::RangePolicy<Exec>(exec, 0, left), KOKKOS_LAMBDA(long t) {
+        const long i = todo(t);
+        const uint64_t key = priority(i, round);
         for (int k = 0; k < 4; ++k)
           if (c(i).p[k] >= 0 && c(i).b[k] != 0) Kokkos::atomic_fetch_max(&owner(c(i).p[k]), key);
       });
-      Kokkos::parallel_for("weft::jp_take", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
-        if (col(i) >= 0) return;
-        const uint64_t key = priority(i);
+      Kokkos::parallel_for("weft::jp_take", Kokkos::RangePolicy<Exec>(exec, 0, left), KOKKOS_LAMBDA(long t) {
+        const long i = todo(t);
+        const uint64_t key = priority(i, round);
         bool win = true;
         for (int k = 0; k < 4; ++k)
           if (c(i).p[k] >= 0 && c(i).b[k] != 0) win = win && owner(c(i).p[k]) == key;
         if (win) col(i) = round;
       });
-      Kokkos::parallel_for("weft::jp_release", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
-        for (int k = 0; k < 4; ++k)
-          if (c(i).p[k] >= 0) owner(c(i).p[k]) = 0;  // same value from every writer
-      });
-      left = 0;
-      Kokkos::parallel_reduce(
-          "weft::jp_left", Kokkos::RangePolicy<Exec>(exec, 0, n),
-          KOKKOS_LAMBDA(long i, long& acc) { acc += col(i) < 0 ? 1 : 0; }, left);
+      auto out = spare;
+      const long remaining = count_scan_fill(
+          exec, left, next, KOKKOS_LAMBDA(long t) { return col(todo(t)) < 0 ? 1 : 0; },
+          KOKKOS_LAMBDA(long t, long o) {
+            if (col(todo(t)) < 0) out(o) = todo(t);
+          });
+      std::swap(todo, spare);
+      left = remaining;
     }
     // Sort by (colour, index) and count each colour.
     auto keys = keys_;
@@ -70,11 +80,11 @@ class ContactColouring {
     auto os = Kokkos::subview(order, std::make_pair(0L, n));
     Kokkos::View<uint64_t*, Mem> kv = ks;
     Kokkos::View<uint32_t*, Mem> ov = os;
-    radix_sort_pairs(exec, kv, ov, 64);
+    radix_sort_pairs(exec, kv, ov, 48);  // colour < 2^16 above a 32-bit index
     auto sorted = sorted_;
     Kokkos::parallel_for("weft::contact_gather", Kokkos::RangePolicy<Exec>(exec, 0, n),
                          KOKKOS_LAMBDA(long i) { sorted(i) = c(ov(i)); });
-    Kokkos::View<long*, Mem> first("weft::colour_first", rounds + 1);
+    Kokkos::View<long*, Mem> first(Kokkos::view_alloc(exec, std::string("weft::colour_first")), rounds + 1);
     Kokkos::parallel_for("weft::colour_bounds", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
       const long ci = long(kv(i) >> 32);
       if (i == 0 || long(kv(i - 1) >> 32) != ci) first(ci) = i;
@@ -87,8 +97,9 @@ class ContactColouring {
   }
 
  private:
-  KOKKOS_INLINE_FUNCTION static uint64_t priority(long i) {
-    return 0x8000000000000000ull | (splitmix64(uint64_t(i)) & 0x7FFFFFFF00000000ull) | uint64_t(i);  // never 0
+  // Round (16 bits, from 1), hash (16 bits), index (32 bits): unique within a round, never 0.
+  KOKKOS_INLINE_FUNCTION static uint64_t priority(long i, int round) {
+    return uint64_t(round + 1) << 48 | (splitmix64(uint64_t(i)) & 0x0000FFFF00000000ull) | uint64_t(i);
   }
   template <class V>
   static void grow(V& v, long n) {
@@ -96,7 +107,9 @@ class ContactColouring {
   }
   Kokkos::View<uint64_t*, Mem> owner_{"weft::jp_owner", 0}, keys_{"weft::jp_keys", 0};
   Kokkos::View<int*, Mem> colour_{"weft::jp_colour", 0};
-  Kokkos::View<uint32_t*, Mem> order_{"weft::jp_order", 0};
+  Kokkos::View<uint32_t*, Mem> order_{"weft::jp_order", 0}, todo_{"weft::jp_todo", 0},
+      spare_{"weft::jp_spare", 0};
+  Kokkos::View<long*, Mem> next_{"weft::jp_next", 0};
   Kokkos::View<Contact*, Mem> sorted_{"weft::contacts_sorted", 0};
 };
 

@@ -208,7 +208,7 @@ class Lbvh {
     lbvh_detail::resize_exact(box_, nodes, "weft::lbvh_box");
     if (n == 0) return;
 
-    Kokkos::View<Aabb, Mem> bounds("weft::lbvh_scene");
+    Kokkos::View<Aabb, Mem> bounds(Kokkos::view_alloc(exec_, std::string("weft::lbvh_scene")));
     lbvh_detail::centre_bounds(exec_, boxes, bounds);
     const auto keys = keys_;
     const auto primitive = primitive_;

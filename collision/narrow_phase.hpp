@@ -35,7 +35,9 @@ struct SideMesh {
 };
 
 struct NarrowSettings {
-  real detect_scale = 1.25;           // proximity contacts within this times the separation
+  real detect_scale = 1.25;           // vertex-face proximity contacts within this times the separation
+  real ee_detect_scale = 1.0;         // edge-edge: only pairs already closer than the separation (or crossing,
+                                      // by CCD); resting layers are held by vertex-face contacts
   real min_sin_angle = 0.17364817766693033;  // sin(10 deg): self edge-edge pairs closer to parallel are dropped
   real static_friction = 0.5, dynamic_friction = 0.5;
   real layer_shock = 4;
@@ -55,6 +57,12 @@ KOKKOS_INLINE_FUNCTION bool vf_hit(const SideMesh<Mem>& P, int p, const SideMesh
   const real d2 = point_triangle_distance2(P.x(p), F.x(a), F.x(b), F.x(c), u, v, w);
   const real lim = s.detect_scale * r;
   if (d2 < lim * lim) return true;
+  // Linear motion moves the point-triangle vector by at most the largest relative displacement of p
+  // against a corner, so a pair that starts farther apart than that plus r cannot touch: skip the CCD.
+  const Vec3 dp = P.x(p) - P.xs(p);
+  const real D = sqrt_(max_(norm2(dp - (F.x(a) - F.xs(a))), max_(norm2(dp - (F.x(b) - F.xs(b))), norm2(dp - (F.x(c) - F.xs(c))))));
+  const real d0 = sqrt_(point_triangle_distance2(P.xs(p), F.xs(a), F.xs(b), F.xs(c), u, v, w));
+  if (d0 - D > r + 1e-9 * (1 + d0)) return false;
   return ccd_vertex_face(P.xs(p), F.xs(a), F.xs(b), F.xs(c), P.x(p), F.x(a), F.x(b), F.x(c), r, s.ccd).hit;
 }
 
@@ -71,8 +79,13 @@ KOKKOS_INLINE_FUNCTION bool ee_hit(const SideMesh<Mem>& A, int a0, int a1, const
     return false;
   real sa, tb;
   const real d2 = segment_segment_distance2(A.x(a0), A.x(a1), B.x(b0), B.x(b1), sa, tb);
-  const real lim = s.detect_scale * r;
+  const real lim = s.ee_detect_scale * r;
   if (d2 < lim * lim) return true;
+  // The same bound as vf_hit: the closest-point vector moves by at most the largest relative displacement.
+  const Vec3 da0 = A.x(a0) - A.xs(a0), da1 = A.x(a1) - A.xs(a1), db0 = B.x(b0) - B.xs(b0), db1 = B.x(b1) - B.xs(b1);
+  const real D = sqrt_(max_(max_(norm2(da0 - db0), norm2(da0 - db1)), max_(norm2(da1 - db0), norm2(da1 - db1))));
+  const real d0 = sqrt_(segment_segment_distance2(A.xs(a0), A.xs(a1), B.xs(b0), B.xs(b1), sa, tb));
+  if (d0 - D > r + 1e-9 * (1 + d0)) return false;
   return ccd_edge_edge(A.xs(a0), A.xs(a1), B.xs(b0), B.xs(b1), A.x(a0), A.x(a1), B.x(b0), B.x(b1), r, s.ccd).hit;
 }
 

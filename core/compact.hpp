@@ -6,12 +6,13 @@
 namespace weft {
 
 // count(i) -> number of outputs of item i; fill(i, first) writes them at [first, first + count(i)).
-// Returns the total. offsets must hold n + 0 entries (it is overwritten).
+// Returns the total. offsets must hold at least n entries; the first n are overwritten.
 template <class Exec, class Count, class Fill, class OffsetView>
 long count_scan_fill(const Exec& exec, long n, const OffsetView& offsets, Count count, Fill fill) {
   Kokkos::parallel_for("weft::count", Kokkos::RangePolicy<Exec>(exec, 0, n),
                        KOKKOS_LAMBDA(long i) { offsets(i) = count(i); });
-  const long total = static_cast<long>(exclusive_scan(exec, offsets, offsets));
+  const auto head = Kokkos::subview(offsets, std::make_pair(0L, n));
+  const long total = static_cast<long>(exclusive_scan(exec, head, head));
   Kokkos::parallel_for("weft::fill", Kokkos::RangePolicy<Exec>(exec, 0, n),
                        KOKKOS_LAMBDA(long i) { fill(i, offsets(i)); });
   return total;

@@ -58,7 +58,7 @@ void reduce_fixed_into(const Exec& exec, const XView& x, const OutView& out, Op 
 // Reduce to a host value (one small copy).
 template <class Exec, class Op, class XView>
 real reduce_fixed(const Exec& exec, const XView& x, Op op = Op{}) {
-  Kokkos::View<real, typename Exec::memory_space> out("weft::reduce_result");
+  Kokkos::View<real, typename Exec::memory_space> out(Kokkos::view_alloc(exec, std::string("weft::reduce_result")));
   reduce_fixed_into<Exec, Op>(exec, x, out, op);
   real h = 0;
   Kokkos::deep_copy(exec, h, out);

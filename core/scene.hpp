@@ -30,6 +30,7 @@ struct SolverSettings {
   bool impact_zone_smoothing = true;     // paper 2.3: Laplacian smoothing of velocities in unresolved contacts
   real impact_zone_epsilon = 0.1;        // contacts with C < -epsilon * thickness are smoothed
   int impact_zone_sweeps = 4;
+  bool profile = false;                  // time each stage (fences between stages)
 };
 
 // Per-point data of all cloth pieces, welded into one point set.

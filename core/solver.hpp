@@ -89,11 +89,18 @@ class Solver {
   // Advances from frame() to frame() + 1.
   FrameStats step_frame() {
     const auto t0 = std::chrono::steady_clock::now();
+    prof_ = FrameStats{};
     for (int s = 0; s < st_.substeps; ++s) substep(s);
     ++frame_;
-    FrameStats fs = measure();
     exec_.fence();
-    fs.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double solve = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    FrameStats fs = measure();
+    fs.seconds_constraints = prof_.seconds_constraints;
+    fs.seconds_collision_passes = prof_.seconds_collision_passes;
+    fs.seconds_contacts = prof_.seconds_contacts;
+    fs.seconds_smoothing = prof_.seconds_smoothing;
+    fs.collision_passes = prof_.collision_passes;
+    fs.seconds = solve;
     return fs;
   }
 
@@ -166,15 +173,30 @@ class Solver {
     if (collision_) collision_->begin_substep(state_, h);
     const int P = collision_ ? st_.collision_passes : 0, I = st_.iterations;
     int next_pass = 0;
+    auto timed = [this](double& acc, auto&& stage) {
+      if (!st_.profile) return stage();
+      exec_.fence();
+      const auto t0 = std::chrono::steady_clock::now();
+      stage();
+      exec_.fence();
+      acc += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
+    auto collision_pass = [&] {
+      timed(prof_.seconds_collision_passes, [&] { collision_->pass(state_, h); });
+      ++prof_.collision_passes;
+      ++next_pass;
+    };
     for (int it = 0; it < I; ++it) {
-      while (next_pass < P && (long(next_pass) * I) / P == it) { collision_->pass(state_, h); ++next_pass; }
-      gauss_seidel_sweep(h);
-      if (collision_) collision_->project(state_, h);
+      while (next_pass < P && (long(next_pass) * I) / P == it) collision_pass();
+      timed(prof_.seconds_constraints, [&] { gauss_seidel_sweep(h); });
+      if (collision_) timed(prof_.seconds_contacts, [&] { collision_->project(state_, h); });
     }
-    while (next_pass < P) { collision_->pass(state_, h); ++next_pass; }
-    for (int it = 0; it < st_.smoothing_iterations; ++it) jacobi_sweep(h);
+    while (next_pass < P) collision_pass();
+    timed(prof_.seconds_constraints, [&] {
+      for (int it = 0; it < st_.smoothing_iterations; ++it) jacobi_sweep(h);
+    });
     kernels::update_velocity(exec_, state_, h);
-    if (collision_) collision_->end_substep(state_, h);
+    if (collision_) timed(prof_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });
   }
 
   void gauss_seidel_sweep(real h) {
@@ -342,6 +364,7 @@ class Solver {
   View<Vec3*> row_delta_;
   View<long*> point_slot_offset_, point_slot_;
   std::unique_ptr<CollisionStage<Exec>> collision_;
+  FrameStats prof_;  // stage times of the frame in progress
 };
 
 }  // namespace weft

@@ -11,15 +11,19 @@
 #include <type_traits>
 
 namespace weft::io::h5 {
+namespace {
 
+// How a C++ number type is stored in memory and in files.
+template <class T>
+hid_t native_type();
+template <class T>
+hid_t file_type();
 template <> hid_t native_type<double>() { return H5T_NATIVE_DOUBLE; }
 template <> hid_t native_type<int>() { return H5T_NATIVE_INT; }
 template <> hid_t native_type<int64_t>() { return H5T_NATIVE_INT64; }
 template <> hid_t file_type<double>() { return H5T_IEEE_F64LE; }
 template <> hid_t file_type<int>() { return H5T_STD_I32LE; }
 template <> hid_t file_type<int64_t>() { return H5T_STD_I64LE; }
-
-namespace {
 
 // HDF5 prints its error stack to stderr by default; weft reports errors itself.
 void quiet() {

@@ -108,10 +108,4 @@ void check_format(const File& f, const std::string& kind, int version);
 // so a failure leaves no file behind.
 void write_atomically(const std::string& path, const std::function<void(const File&)>& body);
 
-// How a C++ number type is stored in memory and in files.
-template <class T>
-hid_t native_type();
-template <class T>
-hid_t file_type();
-
 }  // namespace weft::io::h5

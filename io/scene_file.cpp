@@ -8,8 +8,8 @@
 namespace weft::io {
 namespace {
 
-// A field added to these structs must be added to the file (and the format version raised): the sizes
-// are checked so that the scene file cannot silently drop it.
+// A field added to these structs must be added to the file (and the format version raised): the sizes are
+// checked so that the scene file does not silently drop it (a field that fits in padding escapes the check).
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is stored as 3 doubles");
 static_assert(sizeof(SolverSettings) == 152, "SolverSettings changed: update the settings tables below");
 static_assert(sizeof(XpbdMaterial) == 24 && sizeof(DistanceConstraint) == 40 && sizeof(BendConstraint) == 48 &&
@@ -41,6 +41,7 @@ const std::pair<const char*, int SolverSettings::*> kIntSettings[] = {
 const std::pair<const char*, bool SolverSettings::*> kBoolSettings[] = {
     {"self_collision", &SolverSettings::self_collision},
     {"impact_zone_smoothing", &SolverSettings::impact_zone_smoothing},
+    {"profile", &SolverSettings::profile},
 };
 const std::pair<const char*, Vec3 SolverSettings::*> kVecSettings[] = {
     {"gravity", &SolverSettings::gravity},

@@ -9,7 +9,7 @@ using weft::Vec3;
 
 TEST(WEFT_TEST_SUITE, drape_on_sphere_has_no_intersections_and_stays_outside) {
   using Exec = WEFT_TEST_EXECSPACE;
-  weft::Scene s = weft::io::make_builtin_scene("drape-sphere", {12});
+  weft::Scene s = weft::io::make_builtin_scene("drape-sphere", {10});
   weft::SimulationOn<Exec> sim(s);
   long max_contacts = 0;
   for (int f = 0; f < 24; ++f) {
@@ -42,11 +42,11 @@ TEST(WEFT_TEST_SUITE, fast_collider_never_leaves_cloth_inside_the_box) {
 
 real settled_rms_speed(bool smoothing) {
   using Exec = WEFT_TEST_EXECSPACE;
-  weft::Scene s = weft::io::make_builtin_scene("layer-stack", {8});
+  weft::Scene s = weft::io::make_builtin_scene("layer-stack", {5});
   s.settings.impact_zone_smoothing = smoothing;
   weft::SimulationOn<Exec> sim(s);
   weft::FrameStats fs;
-  for (int f = 0; f < 72; ++f) {
+  for (int f = 0; f < 36; ++f) {
     fs = sim.step_frame();
     EXPECT_EQ(fs.non_finite, 0);
   }
@@ -56,7 +56,7 @@ real settled_rms_speed(bool smoothing) {
 
 TEST(WEFT_TEST_SUITE, layer_stack_settles_and_smoothing_removes_jitter) {
   const real on = settled_rms_speed(true), off = settled_rms_speed(false);
-  std::printf("layer-stack rms speed after 3 s: smoothing on %.3e m/s, off %.3e m/s\n", on, off);
+  std::printf("layer-stack rms speed after 1.5 s: smoothing on %.3e m/s, off %.3e m/s\n", on, off);
   EXPECT_LT(on, 1e-3);
   EXPECT_GT(off, on);
 }

@@ -78,6 +78,11 @@ FrameStats stats_of(int frame) {
   s.contacts = frame + 2;
   s.impact_zone_points = frame + 3;
   s.seconds = 0.5 / frame;
+  s.seconds_constraints = 0.25 / frame;
+  s.seconds_collision_passes = 0.125 / frame;
+  s.seconds_contacts = 0.0625 / frame;
+  s.seconds_smoothing = 0.03125 / frame;
+  s.collision_passes = frame + 4;
   return s;
 }
 
@@ -107,7 +112,11 @@ void expect_frames(const CacheReader& r, const Frames& f) {
     const FrameStats &a = r.stats()[k], &b = f.stats[k];
     EXPECT_TRUE(a.frame == b.frame && a.kinetic_energy == b.kinetic_energy && a.max_speed == b.max_speed &&
                 a.max_strain == b.max_strain && a.rms_speed == b.rms_speed && a.non_finite == b.non_finite &&
-                a.contacts == b.contacts && a.impact_zone_points == b.impact_zone_points && a.seconds == b.seconds)
+                a.contacts == b.contacts && a.impact_zone_points == b.impact_zone_points && a.seconds == b.seconds &&
+                a.seconds_constraints == b.seconds_constraints &&
+                a.seconds_collision_passes == b.seconds_collision_passes &&
+                a.seconds_contacts == b.seconds_contacts && a.seconds_smoothing == b.seconds_smoothing &&
+                a.collision_passes == b.collision_passes)
         << "stats of frame " << k;
   }
 }

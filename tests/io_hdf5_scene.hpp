@@ -74,6 +74,7 @@ Scene every_kind_scene() {
   st.impact_zone_smoothing = false;
   st.impact_zone_epsilon = 0.2;
   st.impact_zone_sweeps = 3;
+  st.profile = true;
   return s;
 }
 
@@ -177,7 +178,8 @@ void expect_identical(const Scene& a, const Scene& b) {
   EXPECT_TRUE(s.frame_start == t.frame_start && s.frame_end == t.frame_end && s.substeps == t.substeps &&
               s.iterations == t.iterations && s.collision_passes == t.collision_passes &&
               s.smoothing_iterations == t.smoothing_iterations && s.impact_zone_sweeps == t.impact_zone_sweeps &&
-              s.self_collision == t.self_collision && s.impact_zone_smoothing == t.impact_zone_smoothing);
+              s.self_collision == t.self_collision && s.impact_zone_smoothing == t.impact_zone_smoothing &&
+              s.profile == t.profile);
   EXPECT_TRUE(differing_settings(s, t).empty());
 }
 

@@ -1,0 +1,106 @@
+// `weft bench <scene>`: time per frame and per stage, for the current schedule or the paper's three
+// (docs/performance.md). Reports numbers; asserts nothing.
+#include "apps/cli.hpp"
+#include "backends/simulation.hpp"
+#include "io/scene_source.hpp"
+
+#include <cstdio>
+#include <fstream>
+
+namespace weft::cli {
+namespace {
+
+struct Options {
+  std::string scene, schedules = "current", json;
+  int res = 0, frames = 10, warmup = 2;
+};
+
+struct Schedule { const char* name; int iterations, passes, substeps; };
+
+struct Result {
+  std::string schedule;
+  int iterations, passes, substeps;
+  double ms_frame = 0, ms_constraints = 0, ms_pass = 0, ms_contacts = 0, ms_smoothing = 0;
+  double contacts = 0;
+  long memory = -1;
+};
+
+Result bench_one(Backend b, Scene scene, const Options& o, const Schedule& sc) {
+  SolverSettings& st = scene.settings;
+  if (sc.substeps > 0) { st.iterations = sc.iterations; st.collision_passes = sc.passes; st.substeps = sc.substeps; }
+  st.frame_end = st.frame_start + o.warmup + o.frames;
+  st.profile = true;
+  Result r{sc.name, st.iterations, st.collision_passes, st.substeps};
+  const long mem0 = device_memory_used_bytes();
+  auto sim = make_simulation(b, scene);
+  for (int f = 0; f < o.warmup; ++f) sim->step_frame();
+  long passes = 0;
+  for (int f = 0; f < o.frames; ++f) {
+    const FrameStats fs = sim->step_frame();
+    r.ms_frame += 1e3 * fs.seconds / o.frames;
+    r.ms_constraints += 1e3 * fs.seconds_constraints / o.frames;
+    r.ms_contacts += 1e3 * fs.seconds_contacts / o.frames;
+    r.ms_smoothing += 1e3 * fs.seconds_smoothing / o.frames;
+    r.ms_pass += 1e3 * fs.seconds_collision_passes;
+    passes += fs.collision_passes;
+    r.contacts += double(fs.contacts) / o.frames;
+  }
+  r.ms_pass = passes > 0 ? r.ms_pass / passes : 0;
+  const long mem1 = device_memory_used_bytes();
+  r.memory = mem0 >= 0 && mem1 >= 0 ? mem1 - mem0 : -1;
+  return r;
+}
+
+int bench(const GlobalOptions& g, const Options& o) {
+  const Backend b = resolve_backend(g);
+  Runtime rt(g.threads);
+  const Scene scene = io::load_scene(o.scene, io::BuiltinOptions{o.res});
+  std::vector<Schedule> schedules;
+  if (o.schedules == "paper") schedules = {{"paper-1", 200, 20, 1}, {"paper-2", 20, 2, 10}, {"paper-3", 10, 1, 20}};
+  else if (o.schedules == "current") schedules = {{"scene", 0, 0, 0}};
+  else throw Error("--schedules is 'paper' or 'current'", 2);
+  std::printf("%s: %zu points, %zu triangles, backend %s, %d frames after %d warm-up (stage times fenced)\n",
+              scene.name.c_str(), scene.points.size(), scene.triangles.size(), backend_name(b), o.frames, o.warmup);
+  std::printf("%-9s %5s %5s %5s %10s %12s %13s %10s %10s %10s %9s\n", "schedule", "iter", "pass", "sub", "ms/frame",
+              "constraints", "ms/col.pass", "contacts", "smoothing", "#contacts", "mem MiB");
+  std::vector<Result> results;
+  for (const Schedule& sc : schedules) {
+    const Result r = bench_one(b, scene, o, sc);
+    std::printf("%-9s %5d %5d %5d %10.2f %12.2f %13.3f %10.2f %10.2f %10.0f %9.1f\n", r.schedule.c_str(), r.iterations,
+                r.passes, r.substeps, r.ms_frame, r.ms_constraints, r.ms_pass, r.ms_contacts, r.ms_smoothing, r.contacts,
+                r.memory >= 0 ? r.memory / 1048576.0 : -1.0);
+    results.push_back(r);
+  }
+  if (!o.json.empty()) {
+    std::ofstream out(o.json);
+    out << "{\"scene\": \"" << scene.name << "\", \"triangles\": " << scene.triangles.size() << ", \"backend\": \""
+        << backend_name(b) << "\", \"results\": [";
+    for (size_t i = 0; i < results.size(); ++i) {
+      const Result& r = results[i];
+      out << (i ? ", " : "") << "{\"schedule\": \"" << r.schedule << "\", \"iterations\": " << r.iterations
+          << ", \"collision_passes\": " << r.passes << ", \"substeps\": " << r.substeps << ", \"ms_per_frame\": " << r.ms_frame
+          << ", \"ms_constraints\": " << r.ms_constraints << ", \"ms_per_collision_pass\": " << r.ms_pass
+          << ", \"ms_contacts\": " << r.ms_contacts << ", \"ms_smoothing\": " << r.ms_smoothing
+          << ", \"contacts\": " << r.contacts << ", \"memory_bytes\": " << r.memory << "}";
+    }
+    out << "]}\n";
+  }
+  return 0;
+}
+
+void add_bench(CLI::App& app, const GlobalOptions& g, Action& action) {
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("bench", "time a scene per frame and per stage");
+  cmd->add_option("scene", o->scene, "builtin:NAME, scene.json or scene.h5")->required();
+  cmd->add_option("--res", o->res, "resolution of a built-in scene")->check(CLI::PositiveNumber);
+  cmd->add_option("--frames", o->frames, "frames timed (default 10)")->check(CLI::PositiveNumber);
+  cmd->add_option("--warmup", o->warmup, "frames run before timing (default 2)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--schedules", o->schedules, "current (the scene's) or paper (the paper's three)");
+  cmd->add_option("--json", o->json, "also write the results as JSON");
+  cmd->callback([&g, &action, o] { action = [&g, o] { return bench(g, *o); }; });
+}
+
+const Register reg("bench", add_bench);
+
+}  // namespace
+}  // namespace weft::cli
