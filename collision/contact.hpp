@@ -51,9 +51,11 @@ KOKKOS_INLINE_FUNCTION void project_contact(const Contact& c, const XView& x, co
     denom += wk[k] * c.b[k] * c.b[k];
   }
   if (!(denom > 0)) return;
+  // Points with weight b = 0 (closest point on an edge or corner) are not this contact's: the colouring
+  // let another contact of the colour own them, so they must not even be written.
   const real dl = -C / denom;
   for (int k = 0; k < 4; ++k)
-    if (wk[k] > 0) x(c.p[k]) += (wk[k] * c.b[k] * dl) * c.n;
+    if (wk[k] > 0 && c.b[k] != 0) x(c.p[k]) += (wk[k] * c.b[k] * dl) * c.n;
   if (!(c.mu_s > 0 || c.mu_d > 0)) return;
   // Relative displacement of the two sides over the substep, tangential part.
   Vec3 d{};
@@ -66,7 +68,7 @@ KOKKOS_INLINE_FUNCTION void project_contact(const Contact& c, const XView& x, co
   const real keep = len < c.mu_s * dn ? 0.0 : max_(real(0), 1 - c.mu_d * dn / len);
   const Vec3 corr = (keep - 1) * dt;  // removes (1 - keep) of the tangential motion
   for (int k = 0; k < 4; ++k)
-    if (wk[k] > 0) x(c.p[k]) += (wk[k] * c.b[k] / denom) * corr;
+    if (wk[k] > 0 && c.b[k] != 0) x(c.p[k]) += (wk[k] * c.b[k] / denom) * corr;
 }
 
 }  // namespace weft

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Sets up and builds one preset:  scripts/build.sh [openmp|cuda|debug] [extra cmake -D options]
-# Honours Kokkos_ROOT (an installed Kokkos) and WEFT_CACHE (where our Kokkos builds live).
+# Honours Kokkos_ROOT (an installed Kokkos), WEFT_CACHE (where our Kokkos builds live), WEFT_JOBS and
+# WEFT_TARGETS (build only these targets, e.g. "weft").
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 preset=${1:-openmp}; shift || true
@@ -13,4 +14,4 @@ extra=(-DKokkos_ROOT="$kroot")
 cmake --preset "$preset" "${extra[@]}" "$@" >/dev/null
 jobs=${WEFT_JOBS:-$(nproc)}
 echo "build: compiling preset $preset with $jobs jobs"
-cmake --build --preset "$preset" -j "$jobs"
+cmake --build --preset "$preset" -j "$jobs" ${WEFT_TARGETS:+--target $WEFT_TARGETS}
