@@ -4,6 +4,7 @@
 #include "core/vec.hpp"
 
 #include <Kokkos_Core.hpp>
+#include <type_traits>
 
 namespace weft {
 
@@ -34,32 +35,34 @@ KOKKOS_INLINE_FUNCTION Aabb swept_triangle_box(Vec3 a0, Vec3 b0, Vec3 c0, Vec3 a
   return inflated(box, m);
 }
 
+// Swept, inflated triangle boxes; Margin is a View of per-triangle margins or one real for all.
+template <class Mem, class Margin>
+struct SweptTriangleBoxes {
+  Kokkos::View<const Vec3*, Mem> x0, x1;
+  Kokkos::View<const int* [3], Mem> tris;
+  Margin margin;
+  Kokkos::View<Aabb*, Mem> boxes;
+  KOKKOS_INLINE_FUNCTION real margin_of(long t) const {
+    if constexpr (std::is_arithmetic_v<Margin>) return margin; else return margin(t);
+  }
+  KOKKOS_INLINE_FUNCTION void operator()(long t) const {
+    const int a = tris(t, 0), b = tris(t, 1), c = tris(t, 2);
+    boxes(t) = swept_triangle_box(x0(a), x0(b), x0(c), x1(a), x1(b), x1(c), margin_of(t));
+  }
+};
+
 // boxes(t) = swept box of triangle t from positions x0 to x1, inflated by margin(t) (e.g. its thickness, so
 // two boxes overlap whenever the triangles come within the sum of their margins). x1 = x0 gives static boxes.
-template <class Exec>
+// margin is a View of per-triangle margins or one real for every triangle.
+template <class Exec, class Margin>
 void swept_triangle_boxes(const Exec& exec, Kokkos::View<const Vec3*, typename Exec::memory_space> x0,
                           Kokkos::View<const Vec3*, typename Exec::memory_space> x1,
-                          Kokkos::View<const int* [3], typename Exec::memory_space> tris,
-                          Kokkos::View<const real*, typename Exec::memory_space> margin,
+                          Kokkos::View<const int* [3], typename Exec::memory_space> tris, const Margin& margin,
                           Kokkos::View<Aabb*, typename Exec::memory_space> boxes) {
-  Kokkos::parallel_for(
-      "weft::swept_triangle_boxes", Kokkos::RangePolicy<Exec>(exec, 0, tris.extent(0)), KOKKOS_LAMBDA(long t) {
-        const int a = tris(t, 0), b = tris(t, 1), c = tris(t, 2);
-        boxes(t) = swept_triangle_box(x0(a), x0(b), x0(c), x1(a), x1(b), x1(c), margin(t));
-      });
-}
-
-// The same with one margin for every triangle.
-template <class Exec>
-void swept_triangle_boxes(const Exec& exec, Kokkos::View<const Vec3*, typename Exec::memory_space> x0,
-                          Kokkos::View<const Vec3*, typename Exec::memory_space> x1,
-                          Kokkos::View<const int* [3], typename Exec::memory_space> tris, real margin,
-                          Kokkos::View<Aabb*, typename Exec::memory_space> boxes) {
-  Kokkos::parallel_for(
-      "weft::swept_triangle_boxes", Kokkos::RangePolicy<Exec>(exec, 0, tris.extent(0)), KOKKOS_LAMBDA(long t) {
-        const int a = tris(t, 0), b = tris(t, 1), c = tris(t, 2);
-        boxes(t) = swept_triangle_box(x0(a), x0(b), x0(c), x1(a), x1(b), x1(c), margin);
-      });
+  using Mem = typename Exec::memory_space;
+  using M = std::conditional_t<std::is_arithmetic_v<Margin>, real, Kokkos::View<const real*, Mem>>;
+  Kokkos::parallel_for("weft::swept_triangle_boxes", Kokkos::RangePolicy<Exec>(exec, 0, tris.extent(0)),
+                       SweptTriangleBoxes<Mem, M>{x0, x1, tris, M(margin), boxes});
 }
 
 }  // namespace weft

@@ -6,6 +6,23 @@
 
 namespace weft {
 
+template <class Mem>
+struct CcdBatch {
+  CcdKind kind;
+  Kokkos::View<const Vec3*, Mem> rows;
+  real ms;
+  CcdSettings s;
+  Kokkos::View<CcdResult*, Mem> out;
+  KOKKOS_INLINE_FUNCTION void operator()(long q) const {
+    const long r = 8 * q;
+    out(q) = kind == CcdKind::VertexFace
+                 ? ccd_vertex_face(rows(r), rows(r + 1), rows(r + 2), rows(r + 3), rows(r + 4), rows(r + 5),
+                                   rows(r + 6), rows(r + 7), ms, s)
+                 : ccd_edge_edge(rows(r), rows(r + 1), rows(r + 2), rows(r + 3), rows(r + 4), rows(r + 5),
+                                 rows(r + 6), rows(r + 7), ms, s);
+  }
+};
+
 // rows: 8 positions per query, in the argument order of ccd_vertex_face / ccd_edge_edge (the four start
 // positions, then the four end positions); out: one result per query.
 template <class Exec>
@@ -13,16 +30,8 @@ void ccd_batch(const Exec& exec, CcdKind kind, const Kokkos::View<const Vec3*, t
                real ms, const CcdSettings& settings,
                const Kokkos::View<CcdResult*, typename Exec::memory_space>& out) {
   const long n = static_cast<long>(rows.extent(0) / 8);
-  const CcdSettings s = settings;
-  Kokkos::parallel_for(
-      "weft::ccd_batch", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long q) {
-        const long r = 8 * q;
-        out(q) = kind == CcdKind::VertexFace
-                     ? ccd_vertex_face(rows(r), rows(r + 1), rows(r + 2), rows(r + 3), rows(r + 4), rows(r + 5),
-                                       rows(r + 6), rows(r + 7), ms, s)
-                     : ccd_edge_edge(rows(r), rows(r + 1), rows(r + 2), rows(r + 3), rows(r + 4), rows(r + 5),
-                                     rows(r + 6), rows(r + 7), ms, s);
-      });
+  Kokkos::parallel_for("weft::ccd_batch", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                       CcdBatch<typename Exec::memory_space>{kind, rows, ms, settings, out});
 }
 
 }  // namespace weft

@@ -16,6 +16,46 @@
 
 namespace weft {
 
+// The handler's kernels, as named functors (docs/solver.md, "Kernels are functors").
+template <class Mem>
+struct ProjectContacts {
+  Kokkos::View<Contact*, Mem> c;
+  Kokkos::View<Vec3*, Mem> x, xs;
+  Kokkos::View<real*, Mem> w;
+  Kokkos::View<Vec3*, Mem> cx, cxs;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const { project_contact(c(i), x, xs, w, cx, cxs); }
+};
+
+// Which features of each candidate triangle pair make contacts, and how many.
+template <class Mem>
+struct NarrowMask {
+  SideMesh<Mem> A, B;
+  Kokkos::View<IndexPair*, Mem> pairs;
+  Kokkos::View<uint32_t*, Mem> masks;
+  Kokkos::View<long*, Mem> counts;
+  NarrowSettings ns;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    const uint32_t m = feature_mask(A, pairs(i).first, B, pairs(i).second, ns);
+    masks(i) = m;
+    counts(i) = popcount15(m);
+  }
+};
+
+// Writes each pair's contacts at its scanned offset.
+template <class Mem>
+struct NarrowFill {
+  SideMesh<Mem> A, B;
+  Kokkos::View<IndexPair*, Mem> pairs;
+  Kokkos::View<uint32_t*, Mem> masks;
+  Kokkos::View<long*, Mem> counts;
+  NarrowSettings ns;
+  Kokkos::View<Contact*, Mem> out;
+  long first;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    if (masks(i)) fill_contacts(A, pairs(i).first, B, pairs(i).second, masks(i), ns, out, first + counts(i));
+  }
+};
+
 template <class Exec>
 class CollisionHandler final : public CollisionStage<Exec> {
  public:
@@ -102,7 +142,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     auto cx = s.collider_x, cxs = s.collider_x_start;
     for (size_t k = 0; k + 1 < offsets_.size(); ++k)
       Kokkos::parallel_for("weft::project_contacts", Kokkos::RangePolicy<Exec>(s.exec, offsets_[k], offsets_[k + 1]),
-                           KOKKOS_LAMBDA(long i) { project_contact(c(i), x, xs, w, cx, cxs); });
+                           ProjectContacts<Mem>{c, x, xs, w, cx, cxs});
   }
 
   void end_substep(const SolverState<Exec>& s, real) override {
@@ -124,11 +164,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
     auto masks = masks_;
     auto counts = counts_;
     const Exec exec;
-    Kokkos::parallel_for("weft::narrow_mask", Kokkos::RangePolicy<Exec>(exec, 0, npairs), KOKKOS_LAMBDA(long i) {
-      const uint32_t m = feature_mask(A, pairs(i).first, B, pairs(i).second, ns);
-      masks(i) = m;
-      counts(i) = popcount15(m);
-    });
+    Kokkos::parallel_for("weft::narrow_mask", Kokkos::RangePolicy<Exec>(exec, 0, npairs),
+                         NarrowMask<Mem>{A, B, pairs, masks, counts, ns});
     const long total = long(exclusive_scan(exec, Kokkos::subview(counts, std::make_pair(0L, npairs)), counts));
     if (long(contacts_.extent(0)) < first + total) {  // grow, keeping what the self pass wrote
       View<Contact*> bigger(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::contacts"), (first + total) * 3 / 2 + 64);
@@ -137,10 +174,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
                           Kokkos::subview(contacts_, std::make_pair(0L, first)));
       contacts_ = bigger;
     }
-    auto out = contacts_;
-    Kokkos::parallel_for("weft::narrow_fill", Kokkos::RangePolicy<Exec>(exec, 0, npairs), KOKKOS_LAMBDA(long i) {
-      if (masks(i)) fill_contacts(A, pairs(i).first, B, pairs(i).second, masks(i), ns, out, first + counts(i));
-    });
+    Kokkos::parallel_for("weft::narrow_fill", Kokkos::RangePolicy<Exec>(exec, 0, npairs),
+                         NarrowFill<Mem>{A, B, pairs, masks, counts, ns, contacts_, first});
     return total;
   }
 

@@ -14,6 +14,106 @@
 
 namespace weft {
 
+namespace colouring_detail {
+
+// Round (16 bits, from 1), hash (16 bits), index (32 bits): unique within a round, never 0.
+KOKKOS_INLINE_FUNCTION uint64_t priority(long i, int round) {
+  return uint64_t(round + 1) << 48 | (splitmix64(uint64_t(i)) & 0x0000FFFF00000000ull) | uint64_t(i);
+}
+
+// The round's kernels, as named functors (docs/solver.md, "Kernels are functors").
+template <class Mem>
+struct Start {
+  Kokkos::View<int*, Mem> col;
+  Kokkos::View<uint32_t*, Mem> todo;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    col(i) = -1;
+    todo(i) = uint32_t(i);
+  }
+};
+
+// Every uncoloured contact claims its moving points with its key (integer atomic max).
+template <class Mem>
+struct Claim {
+  Kokkos::View<Contact*, Mem> c;
+  Kokkos::View<uint32_t*, Mem> todo;
+  Kokkos::View<uint64_t*, Mem> owner;
+  int round;
+  KOKKOS_INLINE_FUNCTION void operator()(long t) const {
+    const long i = todo(t);
+    const uint64_t key = priority(i, round);
+    for (int k = 0; k < 4; ++k)
+      if (c(i).p[k] >= 0 && c(i).b[k] != 0) Kokkos::atomic_fetch_max(&owner(c(i).p[k]), key);
+  }
+};
+
+// A contact that holds all its points takes the round's colour.
+template <class Mem>
+struct Take {
+  Kokkos::View<Contact*, Mem> c;
+  Kokkos::View<uint32_t*, Mem> todo;
+  Kokkos::View<uint64_t*, Mem> owner;
+  Kokkos::View<int*, Mem> col;
+  int round;
+  KOKKOS_INLINE_FUNCTION void operator()(long t) const {
+    const long i = todo(t);
+    const uint64_t key = priority(i, round);
+    bool win = true;
+    for (int k = 0; k < 4; ++k)
+      if (c(i).p[k] >= 0 && c(i).b[k] != 0) win = win && owner(c(i).p[k]) == key;
+    if (win) col(i) = round;
+  }
+};
+
+// Compaction of the still uncoloured contacts (count and fill of count_scan_fill).
+template <class Mem>
+struct StillUncoloured {
+  Kokkos::View<int*, Mem> col;
+  Kokkos::View<uint32_t*, Mem> todo;
+  KOKKOS_INLINE_FUNCTION long operator()(long t) const { return col(todo(t)) < 0 ? 1 : 0; }
+};
+template <class Mem>
+struct KeepUncoloured {
+  Kokkos::View<int*, Mem> col;
+  Kokkos::View<uint32_t*, Mem> todo, out;
+  KOKKOS_INLINE_FUNCTION void operator()(long t, long o) const {
+    if (col(todo(t)) < 0) out(o) = todo(t);
+  }
+};
+
+template <class Mem>
+struct ColourKeys {
+  Kokkos::View<int*, Mem> col;
+  Kokkos::View<uint64_t*, Mem> keys;
+  Kokkos::View<uint32_t*, Mem> order;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    keys(i) = uint64_t(col(i)) << 32 | uint64_t(i);
+    order(i) = uint32_t(i);
+  }
+};
+
+template <class Mem>
+struct Gather {
+  Kokkos::View<Contact*, Mem> c, sorted;
+  Kokkos::View<uint32_t*, Mem> order;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const { sorted(i) = c(order(i)); }
+};
+
+// first(colour) = index of its first contact in the sorted list; first(last + 1) = n.
+template <class Mem>
+struct ColourBounds {
+  Kokkos::View<uint64_t*, Mem> keys;
+  Kokkos::View<long*, Mem> first;
+  long n;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    const long ci = long(keys(i) >> 32);
+    if (i == 0 || long(keys(i - 1) >> 32) != ci) first(ci) = i;
+    if (i == n - 1) first(ci + 1) = n;
+  }
+};
+
+}  // namespace colouring_detail
+
 template <class Exec>
 class ContactColouring {
  public:
@@ -21,6 +121,7 @@ class ContactColouring {
 
   // Reorders contacts(0..n) by colour; returns the colour ranges [offsets[c], offsets[c+1]).
   std::vector<long> colour(const Exec& exec, Kokkos::View<Contact*, Mem>& contacts, long n, long points) {
+    using namespace colouring_detail;
     std::vector<long> offsets{0};
     if (n == 0) return offsets;
     grow(owner_, points);
@@ -31,65 +132,29 @@ class ContactColouring {
     grow(todo_, n);
     grow(spare_, n);
     grow(next_, n + 1);
-    auto owner = owner_;
-    auto col = colour_;
-    auto c = contacts;
-    Kokkos::deep_copy(exec, owner, 0ull);
+    Kokkos::deep_copy(exec, owner_, 0ull);
     auto todo = todo_, spare = spare_;
-    auto next = next_;
-    Kokkos::parallel_for("weft::jp_init", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
-      col(i) = -1;
-      todo(i) = uint32_t(i);
-    });
+    Kokkos::parallel_for("weft::jp_init", Kokkos::RangePolicy<Exec>(exec, 0, n), Start<Mem>{colour_, todo});
     // Keys carry the round in their top bits, so a point's stale claim from an earlier round always loses
     // and owners never need resetting; the uncoloured contacts are compacted after every round.
     int rounds = 0;
     for (long left = n; left > 0; ++rounds) {
-      const int round = rounds;
-      Kokkos::parallel_for("weft::jp_claim", Kokkos::RangePolicy<Exec>(exec, 0, left), KOKKOS_LAMBDA(long t) {
-        const long i = todo(t);
-        const uint64_t key = priority(i, round);
-        for (int k = 0; k < 4; ++k)
-          if (c(i).p[k] >= 0 && c(i).b[k] != 0) Kokkos::atomic_fetch_max(&owner(c(i).p[k]), key);
-      });
-      Kokkos::parallel_for("weft::jp_take", Kokkos::RangePolicy<Exec>(exec, 0, left), KOKKOS_LAMBDA(long t) {
-        const long i = todo(t);
-        const uint64_t key = priority(i, round);
-        bool win = true;
-        for (int k = 0; k < 4; ++k)
-          if (c(i).p[k] >= 0 && c(i).b[k] != 0) win = win && owner(c(i).p[k]) == key;
-        if (win) col(i) = round;
-      });
-      auto out = spare;
-      const long remaining = count_scan_fill(
-          exec, left, next, KOKKOS_LAMBDA(long t) { return col(todo(t)) < 0 ? 1 : 0; },
-          KOKKOS_LAMBDA(long t, long o) {
-            if (col(todo(t)) < 0) out(o) = todo(t);
-          });
+      Kokkos::parallel_for("weft::jp_claim", Kokkos::RangePolicy<Exec>(exec, 0, left),
+                           Claim<Mem>{contacts, todo, owner_, rounds});
+      Kokkos::parallel_for("weft::jp_take", Kokkos::RangePolicy<Exec>(exec, 0, left),
+                           Take<Mem>{contacts, todo, owner_, colour_, rounds});
+      left = count_scan_fill(exec, left, next_, StillUncoloured<Mem>{colour_, todo},
+                             KeepUncoloured<Mem>{colour_, todo, spare});
       std::swap(todo, spare);
-      left = remaining;
     }
     // Sort by (colour, index) and count each colour.
-    auto keys = keys_;
-    auto order = order_;
-    Kokkos::parallel_for("weft::contact_keys", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
-      keys(i) = uint64_t(col(i)) << 32 | uint64_t(i);
-      order(i) = uint32_t(i);
-    });
-    auto ks = Kokkos::subview(keys, std::make_pair(0L, n));
-    auto os = Kokkos::subview(order, std::make_pair(0L, n));
-    Kokkos::View<uint64_t*, Mem> kv = ks;
-    Kokkos::View<uint32_t*, Mem> ov = os;
+    Kokkos::View<uint64_t*, Mem> kv = Kokkos::subview(keys_, std::make_pair(0L, n));
+    Kokkos::View<uint32_t*, Mem> ov = Kokkos::subview(order_, std::make_pair(0L, n));
+    Kokkos::parallel_for("weft::contact_keys", Kokkos::RangePolicy<Exec>(exec, 0, n), ColourKeys<Mem>{colour_, kv, ov});
     radix_sort_pairs(exec, kv, ov, 48);  // colour < 2^16 above a 32-bit index
-    auto sorted = sorted_;
-    Kokkos::parallel_for("weft::contact_gather", Kokkos::RangePolicy<Exec>(exec, 0, n),
-                         KOKKOS_LAMBDA(long i) { sorted(i) = c(ov(i)); });
+    Kokkos::parallel_for("weft::contact_gather", Kokkos::RangePolicy<Exec>(exec, 0, n), Gather<Mem>{contacts, sorted_, ov});
     Kokkos::View<long*, Mem> first(Kokkos::view_alloc(exec, std::string("weft::colour_first")), rounds + 1);
-    Kokkos::parallel_for("weft::colour_bounds", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
-      const long ci = long(kv(i) >> 32);
-      if (i == 0 || long(kv(i - 1) >> 32) != ci) first(ci) = i;
-      if (i == n - 1) first(ci + 1) = n;
-    });
+    Kokkos::parallel_for("weft::colour_bounds", Kokkos::RangePolicy<Exec>(exec, 0, n), ColourBounds<Mem>{kv, first, n});
     auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), first);
     offsets.assign(h.data(), h.data() + rounds + 1);
     std::swap(contacts, sorted_);
@@ -97,10 +162,6 @@ class ContactColouring {
   }
 
  private:
-  // Round (16 bits, from 1), hash (16 bits), index (32 bits): unique within a round, never 0.
-  KOKKOS_INLINE_FUNCTION static uint64_t priority(long i, int round) {
-    return uint64_t(round + 1) << 48 | (splitmix64(uint64_t(i)) & 0x0000FFFF00000000ull) | uint64_t(i);
-  }
   template <class V>
   static void grow(V& v, long n) {
     if (long(v.extent(0)) < n) v = V(Kokkos::view_alloc(Kokkos::WithoutInitializing, v.label()), n + n / 2 + 16);

@@ -19,27 +19,148 @@ struct ImpactZoneStats {
   long zones = 0;     // connected components
 };
 
+namespace impact_zone_detail {
+
+// The kernels, as named functors (docs/solver.md, "Kernels are functors"). A contact's entries are
+// [cnt(i), end(i)): one per movable point of a violating contact.
+template <class Mem>
+struct Entries {
+  Kokkos::View<Contact*, Mem> c;
+  Kokkos::View<long*, Mem> cnt;
+  long n, entries;
+  KOKKOS_INLINE_FUNCTION long end(long i) const { return i + 1 < n ? cnt(i + 1) : entries; }
+  KOKKOS_INLINE_FUNCTION bool moves(long i, int s) const { return c(i).p[s] >= 0 && c(i).b[s] != 0; }
+};
+
+template <class Mem>
+struct CountEntries {
+  Kokkos::View<Contact*, Mem> c;
+  Kokkos::View<Vec3*, Mem> x, cx;
+  Kokkos::View<long*, Mem> cnt;
+  real epsilon;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    long k = 0;
+    if (contact_value(c(i), x, cx) < -epsilon * c(i).r)
+      for (int s = 0; s < 4; ++s) k += (c(i).p[s] >= 0 && c(i).b[s] != 0) ? 1 : 0;
+    cnt(i) = k;
+  }
+};
+
+// Entry keys (point, entry) so that sorting groups each point's contacts in contact order.
+template <class Mem>
+struct FillEntries : Entries<Mem> {
+  Kokkos::View<uint64_t*, Mem> keys;
+  Kokkos::View<uint32_t*, Mem> vals;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    long o = this->cnt(i);
+    const long e = this->end(i);
+    for (int s = 0; s < 4 && o < e; ++s)
+      if (this->moves(i, s)) {
+        keys(o) = uint64_t(this->c(i).p[s]) << 32 | uint64_t(o);
+        vals(o) = uint32_t(i);
+        ++o;
+      }
+  }
+};
+
+template <class Mem>
+struct FirstEntry {
+  Kokkos::View<uint64_t*, Mem> ks;
+  Kokkos::View<long*, Mem> first;
+  KOKKOS_INLINE_FUNCTION void operator()(long e) const {
+    const long p = long(ks(e) >> 32);
+    if (e == 0 || long(ks(e - 1) >> 32) != p) first(p) = e;
+  }
+};
+
+template <class Mem>
+struct LabelInit {
+  Kokkos::View<int*, Mem> label;
+  KOKKOS_INLINE_FUNCTION void operator()(long p) const { label(p) = int(p); }
+};
+
+// One round of label propagation (integer atomic min); counts the labels that changed.
+template <class Mem>
+struct PropagateLabels : Entries<Mem> {
+  Kokkos::View<int*, Mem> label;
+  KOKKOS_INLINE_FUNCTION void operator()(long i, long& acc) const {
+    if (this->end(i) == this->cnt(i)) return;
+    int m = 0x7fffffff;
+    for (int s = 0; s < 4; ++s)
+      if (this->moves(i, s)) m = label(this->c(i).p[s]) < m ? label(this->c(i).p[s]) : m;
+    for (int s = 0; s < 4; ++s)
+      if (this->moves(i, s) && Kokkos::atomic_fetch_min(&label(this->c(i).p[s]), m) > m) ++acc;
+  }
+};
+
+template <class Mem>
+struct CountZones {
+  Kokkos::View<long*, Mem> first;
+  Kokkos::View<int*, Mem> label;
+  KOKKOS_INLINE_FUNCTION void operator()(long p, long& z) const { z += (first(p) >= 0 && label(p) == int(p)) ? 1 : 0; }
+};
+
+template <class Mem>
+struct CountZonePoints {
+  Kokkos::View<long*, Mem> first;
+  KOKKOS_INLINE_FUNCTION void operator()(long p, long& z) const { z += first(p) >= 0 ? 1 : 0; }
+};
+
+template <class Mem>
+struct CountViolating : Entries<Mem> {
+  KOKKOS_INLINE_FUNCTION void operator()(long i, long& z) const { z += this->end(i) > this->cnt(i) ? 1 : 0; }
+};
+
+// Jacobi sweep, first half: each violating contact takes the mean velocity of its points.
+template <class Mem>
+struct ContactMean : Entries<Mem> {
+  Kokkos::View<Vec3*, Mem> v, cbar;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    if (this->end(i) == this->cnt(i)) return;
+    Vec3 s{};
+    int k = 0;
+    for (int q = 0; q < 4; ++q)
+      if (this->moves(i, q)) { s += v(this->c(i).p[q]); ++k; }
+    cbar(i) = s / real(k);
+  }
+};
+
+// Second half: each point takes the mean of its own velocity and its contacts', in contact order.
+template <class Mem>
+struct PointMean {
+  Kokkos::View<long*, Mem> first;
+  Kokkos::View<uint64_t*, Mem> ks;
+  Kokkos::View<uint32_t*, Mem> vs;
+  Kokkos::View<Vec3*, Mem> v, cbar;
+  long entries;
+  KOKKOS_INLINE_FUNCTION void operator()(long p) const {
+    const long e0 = first(p);
+    if (e0 < 0) return;
+    Vec3 s = v(p);
+    long k = 1;
+    for (long e = e0; e < entries && long(ks(e) >> 32) == p; ++e, ++k) s += cbar(vs(e));
+    v(p) = s / real(k);
+  }
+};
+
+}  // namespace impact_zone_detail
+
 template <class Exec>
 class ImpactZones {
  public:
   using Mem = typename Exec::memory_space;
+  using Points = Kokkos::View<Vec3*, Mem>;
 
-  template <class XView, class CView, class VView>
-  ImpactZoneStats smooth(const Exec& exec, const Kokkos::View<Contact*, Mem>& contacts, long n, const XView& x,
-                         const CView& cx, const VView& v, real epsilon, int sweeps) {
+  ImpactZoneStats smooth(const Exec& exec, const Kokkos::View<Contact*, Mem>& c, long n, const Points& x,
+                         const Points& cx, const Points& v, real epsilon, int sweeps) {
+    using namespace impact_zone_detail;
+    using Range = Kokkos::RangePolicy<Exec>;
     ImpactZoneStats st;
     const long np = long(x.extent(0));
     if (n == 0 || sweeps <= 0) return st;
     grow(count_, n + 1);
-    auto c = contacts;
-    auto cnt = count_;
-    // Entries (point, contact) of violating contacts' movable points.
-    Kokkos::parallel_for("weft::iz_count", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
-      long k = 0;
-      if (contact_value(c(i), x, cx) < -epsilon * c(i).r)
-        for (int s = 0; s < 4; ++s) k += (c(i).p[s] >= 0 && c(i).b[s] != 0) ? 1 : 0;
-      cnt(i) = k;
-    });
+    const auto cnt = count_;
+    Kokkos::parallel_for("weft::iz_count", Range(exec, 0, n), CountEntries<Mem>{c, x, cx, cnt, epsilon});
     const long entries = long(exclusive_scan(exec, Kokkos::subview(cnt, std::make_pair(0L, n)), cnt));
     if (entries == 0) return st;
     grow(keys_, entries);
@@ -47,72 +168,27 @@ class ImpactZones {
     grow(first_, np + 1);
     grow(cbar_, n);
     grow(label_, np);
-    auto keys = keys_;
-    auto vals = vals_;
-    Kokkos::parallel_for("weft::iz_fill", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
-      long o = cnt(i);
-      const long end = i + 1 < n ? cnt(i + 1) : entries;
-      for (int s = 0; s < 4 && o < end; ++s)
-        if (c(i).p[s] >= 0 && c(i).b[s] != 0) { keys(o) = uint64_t(c(i).p[s]) << 32 | uint64_t(o); vals(o) = uint32_t(i); ++o; }
-    });
-    Kokkos::View<uint64_t*, Mem> ks = Kokkos::subview(keys, std::make_pair(0L, entries));
-    Kokkos::View<uint32_t*, Mem> vs = Kokkos::subview(vals, std::make_pair(0L, entries));
+    const Entries<Mem> en{c, cnt, n, entries};
+    Kokkos::parallel_for("weft::iz_fill", Range(exec, 0, n), FillEntries<Mem>{en, keys_, vals_});
+    Kokkos::View<uint64_t*, Mem> ks = Kokkos::subview(keys_, std::make_pair(0L, entries));
+    Kokkos::View<uint32_t*, Mem> vs = Kokkos::subview(vals_, std::make_pair(0L, entries));
     radix_sort_pairs(exec, ks, vs, 64);
     // first(p) = first entry of point p, -1 when p is in no zone; first(np) unused.
-    auto first = first_;
-    Kokkos::deep_copy(exec, first, -1L);
-    Kokkos::parallel_for("weft::iz_first", Kokkos::RangePolicy<Exec>(exec, 0, entries), KOKKOS_LAMBDA(long e) {
-      const long p = long(ks(e) >> 32);
-      if (e == 0 || long(ks(e - 1) >> 32) != p) first(p) = e;
-    });
+    Kokkos::deep_copy(exec, first_, -1L);
+    Kokkos::parallel_for("weft::iz_first", Range(exec, 0, entries), FirstEntry<Mem>{ks, first_});
     // Components, for the statistics.
-    auto label = label_;
-    Kokkos::parallel_for("weft::iz_label_init", Kokkos::RangePolicy<Exec>(exec, 0, np),
-                         KOKKOS_LAMBDA(long p) { label(p) = int(p); });
+    Kokkos::parallel_for("weft::iz_label_init", Range(exec, 0, np), LabelInit<Mem>{label_});
     for (long changed = 1; changed > 0;) {
       changed = 0;
-      Kokkos::parallel_reduce(
-          "weft::iz_label", Kokkos::RangePolicy<Exec>(exec, 0, n),
-          KOKKOS_LAMBDA(long i, long& acc) {
-            const long end = i + 1 < n ? cnt(i + 1) : entries;
-            if (end == cnt(i)) return;
-            int m = 0x7fffffff;
-            for (int s = 0; s < 4; ++s)
-              if (c(i).p[s] >= 0 && c(i).b[s] != 0) m = label(c(i).p[s]) < m ? label(c(i).p[s]) : m;
-            for (int s = 0; s < 4; ++s)
-              if (c(i).p[s] >= 0 && c(i).b[s] != 0 && Kokkos::atomic_fetch_min(&label(c(i).p[s]), m) > m) ++acc;
-          },
-          changed);
+      Kokkos::parallel_reduce("weft::iz_label", Range(exec, 0, n), PropagateLabels<Mem>{en, label_}, changed);
     }
-    Kokkos::parallel_reduce(
-        "weft::iz_zones", Kokkos::RangePolicy<Exec>(exec, 0, np),
-        KOKKOS_LAMBDA(long p, long& z) { z += (first(p) >= 0 && label(p) == int(p)) ? 1 : 0; }, st.zones);
-    Kokkos::parallel_reduce(
-        "weft::iz_points", Kokkos::RangePolicy<Exec>(exec, 0, np),
-        KOKKOS_LAMBDA(long p, long& z) { z += first(p) >= 0 ? 1 : 0; }, st.points);
-    Kokkos::parallel_reduce(
-        "weft::iz_contacts", Kokkos::RangePolicy<Exec>(exec, 0, n),
-        KOKKOS_LAMBDA(long i, long& z) { z += ((i + 1 < n ? cnt(i + 1) : entries) > cnt(i)) ? 1 : 0; }, st.contacts);
+    Kokkos::parallel_reduce("weft::iz_zones", Range(exec, 0, np), CountZones<Mem>{first_, label_}, st.zones);
+    Kokkos::parallel_reduce("weft::iz_points", Range(exec, 0, np), CountZonePoints<Mem>{first_}, st.points);
+    Kokkos::parallel_reduce("weft::iz_contacts", Range(exec, 0, n), CountViolating<Mem>{en}, st.contacts);
     // Jacobi sweeps of Laplacian smoothing.
-    auto cbar = cbar_;
     for (int sweep = 0; sweep < sweeps; ++sweep) {
-      Kokkos::parallel_for("weft::iz_contact_mean", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
-        const long end = i + 1 < n ? cnt(i + 1) : entries;
-        if (end == cnt(i)) return;
-        Vec3 s{};
-        int k = 0;
-        for (int q = 0; q < 4; ++q)
-          if (c(i).p[q] >= 0 && c(i).b[q] != 0) { s += v(c(i).p[q]); ++k; }
-        cbar(i) = s / real(k);
-      });
-      Kokkos::parallel_for("weft::iz_point_mean", Kokkos::RangePolicy<Exec>(exec, 0, np), KOKKOS_LAMBDA(long p) {
-        const long e0 = first(p);
-        if (e0 < 0) return;
-        Vec3 s = v(p);
-        long k = 1;
-        for (long e = e0; e < entries && long(ks(e) >> 32) == p; ++e, ++k) s += cbar(vs(e));
-        v(p) = s / real(k);
-      });
+      Kokkos::parallel_for("weft::iz_contact_mean", Range(exec, 0, n), ContactMean<Mem>{en, v, cbar_});
+      Kokkos::parallel_for("weft::iz_point_mean", Range(exec, 0, np), PointMean<Mem>{first_, ks, vs, v, cbar_, entries});
     }
     return st;
   }

@@ -64,11 +64,45 @@ struct LbvhNodes {
 
 namespace lbvh_detail {
 
+// Kernels are named functors, not lambdas (docs/solver.md, "Kernels are functors").
+
 // Karras' delta: common prefix length of keys i and j, -1 when j is outside [0, n).
 template <class KeyView>
 KOKKOS_INLINE_FUNCTION int delta(const KeyView& keys, long n, long i, long j) {
   return j < 0 || j >= n ? -1 : clz64(keys(i) ^ keys(j));
 }
+
+template <class Mem>
+struct CentreBoundsBlocks {
+  Kokkos::View<const Aabb*, Mem> boxes;
+  Kokkos::View<Aabb*, Mem> partial;
+  long n;
+  KOKKOS_INLINE_FUNCTION void operator()(long b) const {
+    const long lo = b * kReduceBlock, hi = lo + kReduceBlock < n ? lo + kReduceBlock : n;
+    Aabb acc = empty_aabb();
+    for (long i = lo; i < hi; ++i) acc = expand(acc, centre(boxes(i)));
+    partial(b) = acc;
+  }
+};
+
+template <class Mem>
+struct MergeBoundsBlocks {
+  Kokkos::View<Aabb*, Mem> in, next;
+  long in_len;
+  KOKKOS_INLINE_FUNCTION void operator()(long b) const {
+    const long lo = b * kReduceBlock, hi = lo + kReduceBlock < in_len ? lo + kReduceBlock : in_len;
+    Aabb acc = in(lo);
+    for (long i = lo + 1; i < hi; ++i) acc = merge(acc, in(i));
+    next(b) = acc;
+  }
+};
+
+template <class Mem>
+struct StoreBounds {
+  Kokkos::View<Aabb, Mem> out;
+  Kokkos::View<Aabb*, Mem> partial;
+  KOKKOS_INLINE_FUNCTION void operator()(int) const { out() = partial(0); }
+};
 
 // Bounds of the box centres, folded in fixed blocks of kReduceBlock (the shape depends on n only).
 template <class Exec>
@@ -78,31 +112,71 @@ void centre_bounds(const Exec& exec, Kokkos::View<const Aabb*, typename Exec::me
   const long n = static_cast<long>(boxes.extent(0));
   long len = (n + kReduceBlock - 1) / kReduceBlock;
   Kokkos::View<Aabb*, Mem> partial(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::lbvh_bounds"), len);
-  Kokkos::parallel_for(
-      "weft::lbvh_centre_bounds", Kokkos::RangePolicy<Exec>(exec, 0, len), KOKKOS_LAMBDA(long b) {
-        const long lo = b * kReduceBlock, hi = lo + kReduceBlock < n ? lo + kReduceBlock : n;
-        Aabb acc = empty_aabb();
-        for (long i = lo; i < hi; ++i) acc = expand(acc, centre(boxes(i)));
-        partial(b) = acc;
-      });
+  Kokkos::parallel_for("weft::lbvh_centre_bounds", Kokkos::RangePolicy<Exec>(exec, 0, len),
+                       CentreBoundsBlocks<Mem>{boxes, partial, n});
   while (len > 1) {
     const long next_len = (len + kReduceBlock - 1) / kReduceBlock;
     Kokkos::View<Aabb*, Mem> next(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::lbvh_bounds"), next_len);
-    const auto in = partial;
-    const long in_len = len;
-    Kokkos::parallel_for(
-        "weft::lbvh_merge_bounds", Kokkos::RangePolicy<Exec>(exec, 0, next_len), KOKKOS_LAMBDA(long b) {
-          const long lo = b * kReduceBlock, hi = lo + kReduceBlock < in_len ? lo + kReduceBlock : in_len;
-          Aabb acc = in(lo);
-          for (long i = lo + 1; i < hi; ++i) acc = merge(acc, in(i));
-          next(b) = acc;
-        });
+    Kokkos::parallel_for("weft::lbvh_merge_bounds", Kokkos::RangePolicy<Exec>(exec, 0, next_len),
+                         MergeBoundsBlocks<Mem>{partial, next, len});
     partial = next;
     len = next_len;
   }
-  Kokkos::parallel_for(
-      "weft::lbvh_bounds_out", Kokkos::RangePolicy<Exec>(exec, 0, 1), KOKKOS_LAMBDA(int) { out() = partial(0); });
+  Kokkos::parallel_for("weft::lbvh_bounds_out", Kokkos::RangePolicy<Exec>(exec, 0, 1), StoreBounds<Mem>{out, partial});
 }
+
+// Internal node i: its key range [min(i, j), max(i, j)] and split gamma, as in Karras' paper.
+template <class Mem>
+struct LinkNodes {
+  Kokkos::View<const uint64_t*, Mem> keys;
+  Kokkos::View<int*, Mem> left, right, parent, rope;
+  long n;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    const long first_leaf = n - 1;
+    const long d = delta(keys, n, i, i + 1) > delta(keys, n, i, i - 1) ? 1 : -1;
+    const int delta_min = delta(keys, n, i, i - d);
+    long len_max = 2;
+    while (delta(keys, n, i, i + len_max * d) > delta_min) len_max *= 2;
+    long len = 0;
+    for (long t = len_max / 2; t >= 1; t /= 2)
+      if (delta(keys, n, i, i + (len + t) * d) > delta_min) len += t;
+    const long j = i + len * d;
+    const int delta_node = delta(keys, n, i, j);
+    long s = 0, t = len;
+    do {
+      t = (t + 1) / 2;
+      if (delta(keys, n, i, i + (s + t) * d) > delta_node) s += t;
+    } while (t > 1);
+    const long gamma = i + s * d + (d < 0 ? -1 : 0);
+    const long lo = i < j ? i : j, hi = i < j ? j : i;
+    const int l = static_cast<int>(lo == gamma ? first_leaf + gamma : gamma);
+    const int r = static_cast<int>(hi == gamma + 1 ? first_leaf + gamma + 1 : gamma + 1);
+    left(i) = l;
+    right(i) = r;
+    parent(l) = static_cast<int>(i);
+    parent(r) = static_cast<int>(i);
+    // A subtree whose key range ends at gamma is followed by the right child of the node split at gamma;
+    // leaf gamma is such a subtree. Internal nodes keep their range end until FinishRopes.
+    rope(first_leaf + gamma) = r;
+    rope(i) = static_cast<int>(hi);
+  }
+};
+
+// An internal node's subtree ends where its last leaf's does; nothing follows the last leaf.
+template <class Mem>
+struct FinishRopes {
+  Kokkos::View<int*, Mem> parent, rope;
+  long first_leaf;
+  KOKKOS_INLINE_FUNCTION void operator()(long k) const {
+    if (k < first_leaf) {
+      const long last = rope(k);
+      rope(k) = last == first_leaf ? -1 : rope(first_leaf + last);
+    } else {
+      rope(first_leaf + first_leaf) = -1;
+    }
+    if (k == 0) parent(0) = -1;
+  }
+};
 
 // Links the nodes from n >= 1 sorted unique keys: children, parents and ropes.
 template <class Exec>
@@ -111,50 +185,111 @@ void link_nodes(const Exec& exec, Kokkos::View<const uint64_t*, typename Exec::m
                 Kokkos::View<int*, typename Exec::memory_space> right,
                 Kokkos::View<int*, typename Exec::memory_space> parent,
                 Kokkos::View<int*, typename Exec::memory_space> rope) {
+  using Mem = typename Exec::memory_space;
   const long n = static_cast<long>(keys.extent(0));
-  const long first_leaf = n - 1;
-  // Internal node i: its key range [min(i, j), max(i, j)] and split gamma, as in Karras' paper.
-  Kokkos::parallel_for(
-      "weft::lbvh_link", Kokkos::RangePolicy<Exec>(exec, 0, n - 1), KOKKOS_LAMBDA(long i) {
-        const long d = delta(keys, n, i, i + 1) > delta(keys, n, i, i - 1) ? 1 : -1;
-        const int delta_min = delta(keys, n, i, i - d);
-        long len_max = 2;
-        while (delta(keys, n, i, i + len_max * d) > delta_min) len_max *= 2;
-        long len = 0;
-        for (long t = len_max / 2; t >= 1; t /= 2)
-          if (delta(keys, n, i, i + (len + t) * d) > delta_min) len += t;
-        const long j = i + len * d;
-        const int delta_node = delta(keys, n, i, j);
-        long s = 0, t = len;
-        do {
-          t = (t + 1) / 2;
-          if (delta(keys, n, i, i + (s + t) * d) > delta_node) s += t;
-        } while (t > 1);
-        const long gamma = i + s * d + (d < 0 ? -1 : 0);
-        const long lo = i < j ? i : j, hi = i < j ? j : i;
-        const int l = static_cast<int>(lo == gamma ? first_leaf + gamma : gamma);
-        const int r = static_cast<int>(hi == gamma + 1 ? first_leaf + gamma + 1 : gamma + 1);
-        left(i) = l;
-        right(i) = r;
-        parent(l) = static_cast<int>(i);
-        parent(r) = static_cast<int>(i);
-        // A subtree whose key range ends at gamma is followed by the right child of the node split at gamma;
-        // leaf gamma is such a subtree. Internal nodes keep their range end until the next kernel.
-        rope(first_leaf + gamma) = r;
-        rope(i) = static_cast<int>(hi);
-      });
-  // An internal node's subtree ends where its last leaf's does; nothing follows the last leaf.
-  Kokkos::parallel_for(
-      "weft::lbvh_ropes", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long k) {
-        if (k < first_leaf) {
-          const long last = rope(k);
-          rope(k) = last == first_leaf ? -1 : rope(first_leaf + last);
-        } else {
-          rope(first_leaf + first_leaf) = -1;
-        }
-        if (k == 0) parent(0) = -1;
-      });
+  Kokkos::parallel_for("weft::lbvh_link", Kokkos::RangePolicy<Exec>(exec, 0, n - 1),
+                       LinkNodes<Mem>{keys, left, right, parent, rope, n});
+  Kokkos::parallel_for("weft::lbvh_ropes", Kokkos::RangePolicy<Exec>(exec, 0, n), FinishRopes<Mem>{parent, rope, n - 1});
 }
+
+template <class Mem>
+struct MortonCodes {
+  Kokkos::View<const Aabb*, Mem> boxes;
+  Kokkos::View<Aabb, Mem> bounds;
+  Kokkos::View<uint64_t*, Mem> keys;
+  Kokkos::View<uint32_t*, Mem> primitive;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    keys(i) = morton30(centre(boxes(i)), bounds());
+    primitive(i) = static_cast<uint32_t>(i);
+  }
+};
+
+template <class Mem>
+struct UniqueKeys {
+  Kokkos::View<uint64_t*, Mem> keys;
+  Kokkos::View<uint32_t*, Mem> primitive;
+  KOKKOS_INLINE_FUNCTION void operator()(long k) const { keys(k) = morton_key(static_cast<uint32_t>(keys(k)), primitive(k)); }
+};
+
+// Each leaf walks up; at every node the second child to finish (an integer atomic count) merges both
+// children, so each node is merged once, in a fixed order: exact, the same on every backend.
+template <class Mem>
+struct Refit {
+  Kokkos::View<const Aabb*, Mem> boxes;
+  Kokkos::View<const uint32_t*, Mem> primitive;
+  Kokkos::View<const int*, Mem> left, right, parent;
+  Kokkos::View<Aabb*, Mem> box;
+  Kokkos::View<int*, Mem> visits;
+  long n;
+  KOKKOS_INLINE_FUNCTION void operator()(long k) const {
+    int x = static_cast<int>(n - 1 + k);
+    box(x) = boxes(primitive(k));
+    while (true) {
+      const int p = parent(x);
+      if (p < 0) break;
+      Kokkos::memory_fence();  // publish box(x) before the count that lets the sibling's thread read it
+      if (Kokkos::atomic_fetch_add(&visits(p), 1) == 0) break;  // the sibling's thread finishes p
+      Kokkos::memory_fence();  // and see the sibling's box
+      box(p) = merge(box(left(p)), box(right(p)));
+      x = p;
+    }
+  }
+};
+
+// Pair queries. Self: query k is leaf k in tree order (neighbouring threads traverse alike), the pair's first
+// index is that leaf's primitive i, and only pairs i < j count. Otherwise query q is the box queries(q).
+template <class Mem, class Pred, bool Self>
+struct PairQuery {
+  LbvhNodes<Mem> tree;
+  Kokkos::View<const Aabb*, Mem> queries;
+  Pred pred;
+  KOKKOS_INLINE_FUNCTION int first(long k) const {
+    return Self ? static_cast<int>(tree.primitive(k)) : static_cast<int>(k);
+  }
+  KOKKOS_INLINE_FUNCTION Aabb box(long k) const { return Self ? tree.box(tree.n - 1 + k) : queries(k); }
+  KOKKOS_INLINE_FUNCTION bool keep(int i, int j) const { return (!Self || i < j) && pred(i, j); }
+};
+
+// Counts per query into offsets(first).
+template <class Mem, class Pred, bool Self>
+struct PairCount {
+  PairQuery<Mem, Pred, Self> q;
+  Kokkos::View<long*, Mem> offsets;
+  KOKKOS_INLINE_FUNCTION void operator()(long k) const {
+    const int i = q.first(k);
+    long c = 0;
+    q.tree.for_each_overlap(q.box(k), [&](int j) {
+      if (q.keep(i, j)) ++c;
+    });
+    offsets(i) = c;
+  }
+};
+
+// The total of PairCount, as a reduction.
+template <class Mem, class Pred, bool Self>
+struct PairTotal {
+  PairQuery<Mem, Pred, Self> q;
+  KOKKOS_INLINE_FUNCTION void operator()(long k, long& acc) const {
+    const int i = q.first(k);
+    q.tree.for_each_overlap(q.box(k), [&](int j) {
+      if (q.keep(i, j)) ++acc;
+    });
+  }
+};
+
+template <class Mem, class Pred, bool Self>
+struct PairFill {
+  PairQuery<Mem, Pred, Self> q;
+  Kokkos::View<long*, Mem> offsets;
+  Kokkos::View<IndexPair*, Mem> out;
+  KOKKOS_INLINE_FUNCTION void operator()(long k) const {
+    const int i = q.first(k);
+    long o = offsets(i);
+    q.tree.for_each_overlap(q.box(k), [&](int j) {
+      if (q.keep(i, j)) out(o++) = IndexPair{i, j};
+    });
+  }
+};
 
 // Grow v (contents dropped) to hold at least `size` items, with some slack so counts that creep up from
 // call to call do not reallocate every time.
@@ -210,149 +345,76 @@ class Lbvh {
 
     Kokkos::View<Aabb, Mem> bounds(Kokkos::view_alloc(exec_, std::string("weft::lbvh_scene")));
     lbvh_detail::centre_bounds(exec_, boxes, bounds);
-    const auto keys = keys_;
-    const auto primitive = primitive_;
-    Kokkos::parallel_for(
-        "weft::lbvh_codes", Kokkos::RangePolicy<Exec>(exec_, 0, n), KOKKOS_LAMBDA(long i) {
-          keys(i) = morton30(centre(boxes(i)), bounds());
-          primitive(i) = static_cast<uint32_t>(i);
-        });
+    Kokkos::parallel_for("weft::lbvh_codes", Kokkos::RangePolicy<Exec>(exec_, 0, n),
+                         lbvh_detail::MortonCodes<Mem>{boxes, bounds, keys_, primitive_});
     // The sort is stable and starts in index order, so sorting the codes alone gives the order of the unique
     // keys (code, index) at half the passes.
-    radix_sort_pairs(exec_, keys, primitive, 32);
-    Kokkos::parallel_for(
-        "weft::lbvh_keys", Kokkos::RangePolicy<Exec>(exec_, 0, n),
-        KOKKOS_LAMBDA(long k) { keys(k) = morton_key(static_cast<uint32_t>(keys(k)), primitive(k)); });
+    radix_sort_pairs(exec_, keys_, primitive_, 32);
+    Kokkos::parallel_for("weft::lbvh_keys", Kokkos::RangePolicy<Exec>(exec_, 0, n),
+                         lbvh_detail::UniqueKeys<Mem>{keys_, primitive_});
     lbvh_detail::link_nodes(exec_, Kokkos::View<const uint64_t*, Mem>(keys_), left_, right_, parent_, rope_);
     refit(boxes);
   }
 
-  // New boxes for the same primitives (boxes.extent(0) == size()). Each leaf walks up; at every node the
-  // second child to finish (an integer atomic count) merges both children, so each node is merged once, in
-  // a fixed order: the result is exact and the same on every backend.
+  // New boxes for the same primitives (boxes.extent(0) == size()).
   void refit(BoxView boxes) {
     const long n = n_;
     if (static_cast<long>(boxes.extent(0)) != n) throw std::invalid_argument("weft::Lbvh::refit: box count changed");
     if (n == 0) return;
     Kokkos::deep_copy(exec_, visits_, 0);
-    const auto primitive = primitive_;
-    const auto left = left_;
-    const auto right = right_;
-    const auto parent = parent_;
-    const auto box = box_;
-    const auto visits = visits_;
-    Kokkos::parallel_for(
-        "weft::lbvh_refit", Kokkos::RangePolicy<Exec>(exec_, 0, n), KOKKOS_LAMBDA(long k) {
-          int x = static_cast<int>(n - 1 + k);
-          box(x) = boxes(primitive(k));
-          while (true) {
-            const int p = parent(x);
-            if (p < 0) break;
-            Kokkos::memory_fence();  // publish box(x) before the count that lets the sibling's thread read it
-            if (Kokkos::atomic_fetch_add(&visits(p), 1) == 0) break;  // the sibling's thread finishes p
-            Kokkos::memory_fence();  // and see the sibling's box
-            box(p) = merge(box(left(p)), box(right(p)));
-            x = p;
-          }
-        });
+    Kokkos::parallel_for("weft::lbvh_refit", Kokkos::RangePolicy<Exec>(exec_, 0, n),
+                         lbvh_detail::Refit<Mem>{boxes, primitive_, left_, right_, parent_, box_, visits_, n});
   }
 
   // Pairs (i, j), i < j, of primitives whose boxes overlap and that pred(i, j) keeps; sorted by i, then by
   // j in tree order.
   template <class Pred>
   long query_self(Pred pred, PairView& pairs) {
-    const long n = n_;
-    lbvh_detail::reserve(offsets_, n, "weft::lbvh_offsets");
-    const auto offsets = offsets_;
-    const LbvhNodes<Mem> tree = nodes();
-    // Threads go through the queries in tree order (neighbours traverse alike) but count at index i.
-    Kokkos::parallel_for(
-        "weft::lbvh_self_count", Kokkos::RangePolicy<Exec>(exec_, 0, n), KOKKOS_LAMBDA(long k) {
-          const int i = static_cast<int>(tree.primitive(k));
-          long c = 0;
-          tree.for_each_overlap(tree.box(n - 1 + k), [&](int j) {
-            if (i < j && pred(i, j)) ++c;
-          });
-          offsets(i) = c;
-        });
-    const long total = exclusive_scan(exec_, Kokkos::subview(offsets, std::make_pair(0L, n)), offsets);
-    lbvh_detail::reserve(pairs, total, "weft::lbvh_pairs");
-    const auto out = pairs;
-    Kokkos::parallel_for(
-        "weft::lbvh_self_fill", Kokkos::RangePolicy<Exec>(exec_, 0, n), KOKKOS_LAMBDA(long k) {
-          const int i = static_cast<int>(tree.primitive(k));
-          long o = offsets(i);
-          tree.for_each_overlap(tree.box(n - 1 + k), [&](int j) {
-            if (i < j && pred(i, j)) out(o++) = IndexPair{i, j};
-          });
-        });
-    return total;
+    return pairs_of<Pred, true>(n_, BoxView(), pred, pairs);
   }
 
   // Pairs (q, j) of query boxes q and primitives j whose boxes overlap and that pred(q, j) keeps; sorted by
   // q, then by j in tree order.
   template <class Pred>
   long query(BoxView queries, Pred pred, PairView& pairs) {
-    const long m = static_cast<long>(queries.extent(0));
-    lbvh_detail::reserve(offsets_, m, "weft::lbvh_offsets");
-    const auto offsets = offsets_;
-    const LbvhNodes<Mem> tree = nodes();
-    Kokkos::parallel_for(
-        "weft::lbvh_query_count", Kokkos::RangePolicy<Exec>(exec_, 0, m), KOKKOS_LAMBDA(long q) {
-          long c = 0;
-          tree.for_each_overlap(queries(q), [&](int j) {
-            if (pred(static_cast<int>(q), j)) ++c;
-          });
-          offsets(q) = c;
-        });
-    const long total = exclusive_scan(exec_, Kokkos::subview(offsets, std::make_pair(0L, m)), offsets);
-    lbvh_detail::reserve(pairs, total, "weft::lbvh_pairs");
-    const auto out = pairs;
-    Kokkos::parallel_for(
-        "weft::lbvh_query_fill", Kokkos::RangePolicy<Exec>(exec_, 0, m), KOKKOS_LAMBDA(long q) {
-          long o = offsets(q);
-          tree.for_each_overlap(queries(q), [&](int j) {
-            if (pred(static_cast<int>(q), j)) out(o++) = IndexPair{static_cast<int>(q), j};
-          });
-        });
-    return total;
+    return pairs_of<Pred, false>(static_cast<long>(queries.extent(0)), queries, pred, pairs);
   }
 
   // The number of pairs query_self would return, in one traversal and without writing them.
   template <class Pred>
   long count_self(Pred pred) const {
-    const long n = n_;
-    const LbvhNodes<Mem> tree = nodes();
-    long total = 0;
-    Kokkos::parallel_reduce(
-        "weft::lbvh_self_total", Kokkos::RangePolicy<Exec>(exec_, 0, n),
-        KOKKOS_LAMBDA(long k, long& acc) {
-          const int i = static_cast<int>(tree.primitive(k));
-          tree.for_each_overlap(tree.box(n - 1 + k), [&](int j) {
-            if (i < j && pred(i, j)) ++acc;
-          });
-        },
-        total);
-    return total;
+    return count_of<Pred, true>(n_, BoxView(), pred);
   }
 
   // The number of pairs query would return.
   template <class Pred>
   long count(BoxView queries, Pred pred) const {
-    const LbvhNodes<Mem> tree = nodes();
-    long total = 0;
-    Kokkos::parallel_reduce(
-        "weft::lbvh_query_total", Kokkos::RangePolicy<Exec>(exec_, 0, queries.extent(0)),
-        KOKKOS_LAMBDA(long q, long& acc) {
-          tree.for_each_overlap(queries(q), [&](int j) {
-            if (pred(static_cast<int>(q), j)) ++acc;
-          });
-        },
-        total);
-    return total;
+    return count_of<Pred, false>(static_cast<long>(queries.extent(0)), queries, pred);
   }
 
  private:
+  template <class Pred, bool Self>
+  long pairs_of(long m, BoxView queries, const Pred& pred, PairView& pairs) {
+    lbvh_detail::reserve(offsets_, m, "weft::lbvh_offsets");
+    const lbvh_detail::PairQuery<Mem, Pred, Self> q{nodes(), queries, pred};
+    Kokkos::parallel_for(Self ? "weft::lbvh_self_count" : "weft::lbvh_query_count",
+                         Kokkos::RangePolicy<Exec>(exec_, 0, m), lbvh_detail::PairCount<Mem, Pred, Self>{q, offsets_});
+    const long total = exclusive_scan(exec_, Kokkos::subview(offsets_, std::make_pair(0L, m)), offsets_);
+    lbvh_detail::reserve(pairs, total, "weft::lbvh_pairs");
+    Kokkos::parallel_for(Self ? "weft::lbvh_self_fill" : "weft::lbvh_query_fill", Kokkos::RangePolicy<Exec>(exec_, 0, m),
+                         lbvh_detail::PairFill<Mem, Pred, Self>{q, offsets_, pairs});
+    return total;
+  }
+
+  template <class Pred, bool Self>
+  long count_of(long m, BoxView queries, const Pred& pred) const {
+    long total = 0;
+    const lbvh_detail::PairQuery<Mem, Pred, Self> q{nodes(), queries, pred};
+    Kokkos::parallel_reduce(Self ? "weft::lbvh_self_total" : "weft::lbvh_query_total",
+                            Kokkos::RangePolicy<Exec>(exec_, 0, m), lbvh_detail::PairTotal<Mem, Pred, Self>{q}, total);
+    return total;
+  }
+
   Exec exec_;
   long n_ = 0;
   Kokkos::View<uint64_t*, Mem> keys_;      // sorted unique keys

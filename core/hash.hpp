@@ -16,6 +16,11 @@ KOKKOS_INLINE_FUNCTION uint64_t splitmix64(uint64_t z) {
   return z ^ (z >> 31);
 }
 
+struct HashWords {
+  const uint32_t* p;
+  KOKKOS_INLINE_FUNCTION void operator()(long i, uint64_t& acc) const { acc += splitmix64((uint64_t(i) << 32) ^ p[i]); }
+};
+
 // Hash of the bytes of a contiguous View whose value size is a multiple of 4.
 template <class Exec, class View>
 uint64_t hash_view(const Exec& exec, const View& v) {
@@ -24,9 +29,7 @@ uint64_t hash_view(const Exec& exec, const View& v) {
   const long words = static_cast<long>(v.span() * sizeof(T) / 4);
   const uint32_t* p = reinterpret_cast<const uint32_t*>(v.data());
   uint64_t sum = 0;
-  Kokkos::parallel_reduce(
-      "weft::hash_view", Kokkos::RangePolicy<Exec>(exec, 0, words),
-      KOKKOS_LAMBDA(long i, uint64_t& acc) { acc += splitmix64((uint64_t(i) << 32) ^ p[i]); }, sum);
+  Kokkos::parallel_reduce("weft::hash_view", Kokkos::RangePolicy<Exec>(exec, 0, words), HashWords{p}, sum);
   return splitmix64(sum ^ splitmix64(uint64_t(words)));
 }
 

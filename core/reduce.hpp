@@ -24,31 +24,56 @@ struct MaxOp {
   KOKKOS_INLINE_FUNCTION real operator()(real a, real b) const { return max_(a, b); }
 };
 
+// Kernels are named functors, not lambdas: nvcc's host-device lambdas break when one template instance
+// is compiled in several translation units (docs/solver.md, "Kernels are functors").
+template <class Out, class Op>
+struct ReduceIdentity {
+  Out out;
+  KOKKOS_INLINE_FUNCTION void operator()(int) const { out() = Op::identity(); }
+};
+
+template <class In, class Partial, class Op>
+struct ReduceBlocks {
+  In in;
+  Partial partial;
+  long len;
+  Op op;
+  KOKKOS_INLINE_FUNCTION void operator()(long b) const {
+    const long lo = b * kReduceBlock, hi = lo + kReduceBlock < len ? lo + kReduceBlock : len;
+    real acc = in(lo);
+    for (long i = lo + 1; i < hi; ++i) acc = op(acc, in(i));
+    partial(b) = acc;
+  }
+};
+
+template <class Out, class Partial>
+struct ReduceStore {
+  Out out;
+  Partial partial;
+  KOKKOS_INLINE_FUNCTION void operator()(int) const { out() = partial(0); }
+};
+
 // Reduce x[0..n) into out() on the device; no host copy.
 template <class Exec, class Op, class XView, class OutView>
 void reduce_fixed_into(const Exec& exec, const XView& x, const OutView& out, Op op = Op{}) {
   using Mem = typename Exec::memory_space;
+  using In = Kokkos::View<const real*, Mem>;
+  using Partial = Kokkos::View<real*, Mem>;
   const long n = static_cast<long>(x.extent(0));
   if (n == 0) {
-    Kokkos::parallel_for("weft::reduce_empty", Kokkos::RangePolicy<Exec>(exec, 0, 1),
-                         KOKKOS_LAMBDA(int) { out() = Op::identity(); });
+    Kokkos::parallel_for("weft::reduce_empty", Kokkos::RangePolicy<Exec>(exec, 0, 1), ReduceIdentity<OutView, Op>{out});
     return;
   }
-  Kokkos::View<const real*, Mem> in = x;
+  In in = x;
   while (true) {
     const long len = static_cast<long>(in.extent(0));
     const long nb = (len + kReduceBlock - 1) / kReduceBlock;
-    Kokkos::View<real*, Mem> partial(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::reduce_partial"), nb);
-    Kokkos::parallel_for(
-        "weft::reduce_blocks", Kokkos::RangePolicy<Exec>(exec, 0, nb), KOKKOS_LAMBDA(long b) {
-          const long lo = b * kReduceBlock, hi = lo + kReduceBlock < len ? lo + kReduceBlock : len;
-          real acc = in(lo);
-          for (long i = lo + 1; i < hi; ++i) acc = op(acc, in(i));
-          partial(b) = acc;
-        });
+    Partial partial(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::reduce_partial"), nb);
+    Kokkos::parallel_for("weft::reduce_blocks", Kokkos::RangePolicy<Exec>(exec, 0, nb),
+                         ReduceBlocks<In, Partial, Op>{in, partial, len, op});
     if (nb == 1) {
       Kokkos::parallel_for("weft::reduce_out", Kokkos::RangePolicy<Exec>(exec, 0, 1),
-                           KOKKOS_LAMBDA(int) { out() = partial(0); });
+                           ReduceStore<OutView, Partial>{out, partial});
       return;
     }
     in = partial;

@@ -9,6 +9,7 @@
 #include "core/hash.hpp"
 #include "core/reduce.hpp"
 #include "core/scene.hpp"
+#include "core/solver_kernels.hpp"
 #include "core/solver_state.hpp"
 
 #include <Kokkos_Core.hpp>
@@ -17,52 +18,6 @@
 #include <vector>
 
 namespace weft {
-
-namespace kernels {
-
-// Goals at time t (in frames since the first frame): linear between stored frames, last frame held.
-template <class Exec, class FramesView, class OutView>
-void interpolate_animation(const Exec& exec, const FramesView& frames, const OutView& out, real t) {
-  const long nf = long(frames.extent(0)), n = long(frames.extent(1));
-  if (nf == 0 || n == 0) return;
-  long f0 = long(t);
-  real a = t - real(f0);
-  if (f0 >= nf - 1) { f0 = nf - 1; a = 0; }
-  const long f1 = f0 + 1 < nf ? f0 + 1 : f0;
-  Kokkos::parallel_for("weft::interpolate_animation", Kokkos::RangePolicy<Exec>(exec, 0, n), KOKKOS_LAMBDA(long i) {
-    out(i) = frames(f0, i) + a * (frames(f1, i) - frames(f0, i));
-  });
-}
-
-template <class Exec, class Mem>
-void predict(const Exec& exec, const SolverState<Exec>& s, Vec3 accel, real damping, real h) {
-  auto x = s.x, xs = s.x_start, v = s.v;
-  auto w = s.w;
-  const real keep = max_(real(0), 1 - damping * h);
-  Kokkos::parallel_for("weft::predict", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)), KOKKOS_LAMBDA(long i) {
-    xs(i) = x(i);
-    if (w(i) > 0) {
-      const Vec3 vi = keep * v(i) + h * accel;  // damping never weakens gravity at rest
-      v(i) = vi;
-      x(i) = x(i) + h * vi;
-    }
-  });
-}
-
-template <class Exec, class IView, class XView>
-void follow_targets(const Exec& exec, const IView& point, const IView& target, const XView& goals, const XView& x) {
-  Kokkos::parallel_for("weft::kinematic", Kokkos::RangePolicy<Exec>(exec, 0, point.extent(0)),
-                       KOKKOS_LAMBDA(long k) { x(point(k)) = goals(target(k)); });
-}
-
-template <class Exec>
-void update_velocity(const Exec& exec, const SolverState<Exec>& s, real h) {
-  auto x = s.x, xs = s.x_start, v = s.v;
-  Kokkos::parallel_for("weft::velocity", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
-                       KOKKOS_LAMBDA(long i) { v(i) = (x(i) - xs(i)) / h; });
-}
-
-}  // namespace kernels
 
 template <class Exec>
 class Solver {
@@ -131,34 +86,27 @@ class Solver {
     auto w = state_.w;
     auto mass = mass_;
     auto e = scratch_;
-    Kokkos::parallel_for("weft::stats_energy", Kokkos::RangePolicy<Exec>(exec_, 0, n), KOKKOS_LAMBDA(long i) {
-      e(i) = w(i) > 0 ? 0.5 * mass(i) * dot(v(i), v(i)) : 0.0;
-    });
+    Kokkos::parallel_for("weft::stats_energy", Kokkos::RangePolicy<Exec>(exec_, 0, n),
+                         kernels::KineticEnergy<Mem>{v, w, mass, e});
     fs.kinetic_energy = reduce_fixed(exec_, e, SumOp{});
-    Kokkos::parallel_for("weft::stats_speed2", Kokkos::RangePolicy<Exec>(exec_, 0, n),
-                         KOKKOS_LAMBDA(long i) { e(i) = w(i) > 0 ? dot(v(i), v(i)) : 0.0; });
+    Kokkos::parallel_for("weft::stats_speed2", Kokkos::RangePolicy<Exec>(exec_, 0, n), kernels::SpeedSquared<Mem>{v, w, e});
     fs.max_speed = sqrt_(reduce_fixed(exec_, e, MaxOp{}));
     const real sum_v2 = reduce_fixed(exec_, e, SumOp{});
     fs.rms_speed = movable_ > 0 ? sqrt_(sum_v2 / real(movable_)) : 0.0;
     auto rows = rows_;
     const long nr = long(rows.extent(0));
     auto strain = row_scratch_;
-    Kokkos::parallel_for("weft::stats_strain", Kokkos::RangePolicy<Exec>(exec_, 0, nr), KOKKOS_LAMBDA(long r) {
-      const Row& row = rows(r);
-      strain(r) = row.kind == kRowDistance && row.rest > 0
-                      ? abs_(norm(x(row.idx[1]) - x(row.idx[0])) / row.rest - 1)
-                      : 0.0;
-    });
+    Kokkos::parallel_for("weft::stats_strain", Kokkos::RangePolicy<Exec>(exec_, 0, nr),
+                         kernels::EdgeStrain<Mem>{rows, x, strain});
     fs.max_strain = reduce_fixed(exec_, strain, MaxOp{});
     long bad = 0;
-    Kokkos::parallel_reduce(
-        "weft::stats_finite", Kokkos::RangePolicy<Exec>(exec_, 0, n),
-        KOKKOS_LAMBDA(long i, long& acc) { acc += isfinite_(x(i)) ? 0 : 1; }, bad);
+    Kokkos::parallel_reduce("weft::stats_finite", Kokkos::RangePolicy<Exec>(exec_, 0, n),
+                            kernels::CountNonFinite<Mem>{x}, bad);
     fs.non_finite = bad;
     return fs;
   }
 
-  // One substep; public because CUDA device lambdas may not live in private member functions.
+  // One substep.
   void substep(int s) {
     const real h = 1 / (st_.fps * st_.substeps);
     const real t_end = real(frame_ - st_.frame_start) + real(s + 1) / real(st_.substeps);
@@ -167,8 +115,11 @@ class Solver {
       kernels::interpolate_animation(exec_, collider_frames_, state_.collider_x, t_end);
     }
     kernels::interpolate_animation(exec_, target_frames_, targets_, t_end);
-    kernels::predict<Exec, Mem>(exec_, state_, st_.gravity + st_.wind, st_.velocity_damping, h);
-    kernels::follow_targets(exec_, kin_point_, kin_target_, targets_, state_.x);
+    Kokkos::parallel_for("weft::predict", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
+                         kernels::Predict<Mem>{state_.x, state_.x_start, state_.v, state_.w, st_.gravity + st_.wind,
+                                               max_(real(0), 1 - st_.velocity_damping * h), h});
+    Kokkos::parallel_for("weft::kinematic", Kokkos::RangePolicy<Exec>(exec_, 0, kin_point_.extent(0)),
+                         kernels::FollowTargets<Mem>{kin_point_, kin_target_, targets_, state_.x});
     Kokkos::deep_copy(exec_, lambda_, 0.0);
     if (collision_) collision_->begin_substep(state_, h);
     const int P = collision_ ? st_.collision_passes : 0, I = st_.iterations;
@@ -195,7 +146,8 @@ class Solver {
     timed(prof_.seconds_constraints, [&] {
       for (int it = 0; it < st_.smoothing_iterations; ++it) jacobi_sweep(h);
     });
-    kernels::update_velocity(exec_, state_, h);
+    Kokkos::parallel_for("weft::velocity", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
+                         kernels::UpdateVelocity<Mem>{state_.x, state_.x_start, state_.v, h});
     if (collision_) timed(prof_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });
   }
 
@@ -208,7 +160,7 @@ class Solver {
     for (size_t c = 0; c + 1 < colour_offset_.size(); ++c)
       Kokkos::parallel_for("weft::project_colour",
                            Kokkos::RangePolicy<Exec>(exec_, colour_offset_[c], colour_offset_[c + 1]),
-                           KOKKOS_LAMBDA(long r) { project_row(rows(r), x, xs, w, lambda(r), ctx, h); });
+                           kernels::ProjectRows<Mem>{rows, x, xs, w, lambda, ctx, h});
   }
 
   // Vellum's smoothing: every row computes its correction from the same positions, and each point moves
@@ -220,27 +172,12 @@ class Solver {
     auto w = state_.w;
     auto delta = row_delta_;
     const RowContext<Mem> ctx{targets_, state_.collider_x};
-    Kokkos::parallel_for("weft::jacobi_rows", Kokkos::RangePolicy<Exec>(exec_, 0, rows.extent(0)), KOKKOS_LAMBDA(long r) {
-      const Row& row = rows(r);
-      real C = 0;
-      Vec3 g[5];
-      const int n = row_eval(row, x, ctx, C, g);
-      real wi[5] = {0, 0, 0, 0, 0};
-      Vec3 dx[5];
-      for (int k = 0; k < n; ++k) { wi[k] = w(row.idx[k]); dx[k] = x(row.idx[k]) - xs(row.idx[k]); }
-      const real dl = xpbd_delta_lambda<5>(C, g, wi, dx, lambda(r), row.m, h);
-      lambda(r) += dl;
-      for (int k = 0; k < 5; ++k) delta(5 * r + k) = (wi[k] * dl) * g[k];
-    });
+    Kokkos::parallel_for("weft::jacobi_rows", Kokkos::RangePolicy<Exec>(exec_, 0, rows.extent(0)),
+                         kernels::JacobiRows<Mem>{rows, x, xs, delta, w, lambda, ctx, h});
     auto off = point_slot_offset_;
     auto slot = point_slot_;
-    Kokkos::parallel_for("weft::jacobi_points", Kokkos::RangePolicy<Exec>(exec_, 0, x.extent(0)), KOKKOS_LAMBDA(long i) {
-      const long lo = off(i), hi = off(i + 1);
-      if (hi == lo) return;
-      Vec3 sum{};
-      for (long k = lo; k < hi; ++k) sum += delta(slot(k));
-      x(i) += sum / real(hi - lo);
-    });
+    Kokkos::parallel_for("weft::jacobi_points", Kokkos::RangePolicy<Exec>(exec_, 0, x.extent(0)),
+                         kernels::JacobiPoints<Mem>{off, slot, delta, x});
   }
 
  private:

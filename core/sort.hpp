@@ -11,6 +11,40 @@ namespace weft {
 
 inline constexpr int kSortBlock = 256;
 
+template <class Mem>
+struct RadixCount {
+  Kokkos::View<uint64_t*, Mem> ksrc;
+  Kokkos::View<long*, Mem> hist;
+  long n, nb;
+  int shift;
+  KOKKOS_INLINE_FUNCTION void operator()(long b) const {
+    long c[256];
+    for (int d = 0; d < 256; ++d) c[d] = 0;
+    const long lo = b * kSortBlock, hi = lo + kSortBlock < n ? lo + kSortBlock : n;
+    for (long i = lo; i < hi; ++i) ++c[(ksrc(i) >> shift) & 255u];
+    for (int d = 0; d < 256; ++d) hist(d * nb + b) = c[d];
+  }
+};
+
+template <class Mem>
+struct RadixScatter {
+  Kokkos::View<uint64_t*, Mem> ksrc, kdst;
+  Kokkos::View<uint32_t*, Mem> vsrc, vdst;
+  Kokkos::View<long*, Mem> hist;
+  long n, nb;
+  int shift;
+  KOKKOS_INLINE_FUNCTION void operator()(long b) const {
+    long o[256];
+    for (int d = 0; d < 256; ++d) o[d] = hist(d * nb + b);
+    const long lo = b * kSortBlock, hi = lo + kSortBlock < n ? lo + kSortBlock : n;
+    for (long i = lo; i < hi; ++i) {
+      const long dst = o[(ksrc(i) >> shift) & 255u]++;
+      kdst(dst) = ksrc(i);
+      vdst(dst) = vsrc(i);
+    }
+  }
+};
+
 // Sorts keys (and values alongside) ascending; only the low key_bits bits of each key are compared.
 template <class Exec, class KeyView, class ValView>
 void radix_sort_pairs(const Exec& exec, const KeyView& keys, const ValView& vals, int key_bits = 64) {
@@ -25,26 +59,11 @@ void radix_sort_pairs(const Exec& exec, const KeyView& keys, const ValView& vals
   Kokkos::View<uint32_t*, Mem> vsrc = vals, vdst = v2;
   int passes = 0;
   for (int shift = 0; shift < key_bits; shift += 8, ++passes) {
-    Kokkos::parallel_for(
-        "weft::sort_count", Kokkos::RangePolicy<Exec>(exec, 0, nb), KOKKOS_LAMBDA(long b) {
-          long c[256];
-          for (int d = 0; d < 256; ++d) c[d] = 0;
-          const long lo = b * kSortBlock, hi = lo + kSortBlock < n ? lo + kSortBlock : n;
-          for (long i = lo; i < hi; ++i) ++c[(ksrc(i) >> shift) & 255u];
-          for (int d = 0; d < 256; ++d) hist(d * nb + b) = c[d];
-        });
+    Kokkos::parallel_for("weft::sort_count", Kokkos::RangePolicy<Exec>(exec, 0, nb),
+                         RadixCount<Mem>{ksrc, hist, n, nb, shift});
     exclusive_scan(exec, hist, hist);
-    Kokkos::parallel_for(
-        "weft::sort_scatter", Kokkos::RangePolicy<Exec>(exec, 0, nb), KOKKOS_LAMBDA(long b) {
-          long o[256];
-          for (int d = 0; d < 256; ++d) o[d] = hist(d * nb + b);
-          const long lo = b * kSortBlock, hi = lo + kSortBlock < n ? lo + kSortBlock : n;
-          for (long i = lo; i < hi; ++i) {
-            const long dst = o[(ksrc(i) >> shift) & 255u]++;
-            kdst(dst) = ksrc(i);
-            vdst(dst) = vsrc(i);
-          }
-        });
+    Kokkos::parallel_for("weft::sort_scatter", Kokkos::RangePolicy<Exec>(exec, 0, nb),
+                         RadixScatter<Mem>{ksrc, kdst, vsrc, vdst, hist, n, nb, shift});
     auto kt = ksrc; ksrc = kdst; kdst = kt;
     auto vt = vsrc; vsrc = vdst; vdst = vt;
   }

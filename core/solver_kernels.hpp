@@ -1,0 +1,144 @@
+// The solver's device kernels, as named functors (nvcc's host-device lambdas break when one template
+// instance is compiled in several translation units; docs/solver.md, "Kernels are functors").
+#pragma once
+#include "constraints/rows.hpp"
+#include "core/real.hpp"
+#include "core/vec.hpp"
+
+#include <Kokkos_Core.hpp>
+
+namespace weft::kernels {
+
+template <class Mem>
+struct InterpolateFrames {
+  Kokkos::View<Vec3**, Mem> frames;
+  Kokkos::View<Vec3*, Mem> out;
+  long f0, f1;
+  real a;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const { out(i) = frames(f0, i) + a * (frames(f1, i) - frames(f0, i)); }
+};
+
+// Goals at time t (in frames since the first frame): linear between stored frames, last frame held.
+template <class Exec>
+void interpolate_animation(const Exec& exec, const Kokkos::View<Vec3**, typename Exec::memory_space>& frames,
+                           const Kokkos::View<Vec3*, typename Exec::memory_space>& out, real t) {
+  const long nf = long(frames.extent(0)), n = long(frames.extent(1));
+  if (nf == 0 || n == 0) return;
+  long f0 = long(t);
+  real a = t - real(f0);
+  if (f0 >= nf - 1) { f0 = nf - 1; a = 0; }
+  const long f1 = f0 + 1 < nf ? f0 + 1 : f0;
+  Kokkos::parallel_for("weft::interpolate_animation", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                       InterpolateFrames<typename Exec::memory_space>{frames, out, f0, f1, a});
+}
+
+template <class Mem>
+struct Predict {
+  Kokkos::View<Vec3*, Mem> x, xs, v;
+  Kokkos::View<real*, Mem> w;
+  Vec3 accel;
+  real keep, h;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    xs(i) = x(i);
+    if (w(i) > 0) {
+      const Vec3 vi = keep * v(i) + h * accel;  // damping never weakens gravity at rest
+      v(i) = vi;
+      x(i) = x(i) + h * vi;
+    }
+  }
+};
+
+template <class Mem>
+struct FollowTargets {
+  Kokkos::View<int*, Mem> point, target;
+  Kokkos::View<Vec3*, Mem> goals, x;
+  KOKKOS_INLINE_FUNCTION void operator()(long k) const { x(point(k)) = goals(target(k)); }
+};
+
+template <class Mem>
+struct UpdateVelocity {
+  Kokkos::View<Vec3*, Mem> x, xs, v;
+  real h;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const { v(i) = (x(i) - xs(i)) / h; }
+};
+
+// One colour of Gauss-Seidel: the rows of a colour share no point, so they run in parallel.
+template <class Mem>
+struct ProjectRows {
+  Kokkos::View<Row*, Mem> rows;
+  Kokkos::View<Vec3*, Mem> x, xs;
+  Kokkos::View<real*, Mem> w, lambda;
+  RowContext<Mem> ctx;
+  real h;
+  KOKKOS_INLINE_FUNCTION void operator()(long r) const { project_row(rows(r), x, xs, w, lambda(r), ctx, h); }
+};
+
+// Jacobi smoothing, first half: every row's correction from the same positions.
+template <class Mem>
+struct JacobiRows {
+  Kokkos::View<Row*, Mem> rows;
+  Kokkos::View<Vec3*, Mem> x, xs, delta;
+  Kokkos::View<real*, Mem> w, lambda;
+  RowContext<Mem> ctx;
+  real h;
+  KOKKOS_INLINE_FUNCTION void operator()(long r) const {
+    const Row& row = rows(r);
+    real C = 0;
+    Vec3 g[5];
+    const int n = row_eval(row, x, ctx, C, g);
+    real wi[5] = {0, 0, 0, 0, 0};
+    Vec3 dx[5];
+    for (int k = 0; k < n; ++k) { wi[k] = w(row.idx[k]); dx[k] = x(row.idx[k]) - xs(row.idx[k]); }
+    const real dl = xpbd_delta_lambda<5>(C, g, wi, dx, lambda(r), row.m, h);
+    lambda(r) += dl;
+    for (int k = 0; k < 5; ++k) delta(5 * r + k) = (wi[k] * dl) * g[k];
+  }
+};
+
+// Second half: each point moves by the average of its corrections, gathered in row order.
+template <class Mem>
+struct JacobiPoints {
+  Kokkos::View<long*, Mem> off, slot;
+  Kokkos::View<Vec3*, Mem> delta, x;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    const long lo = off(i), hi = off(i + 1);
+    if (hi == lo) return;
+    Vec3 sum{};
+    for (long k = lo; k < hi; ++k) sum += delta(slot(k));
+    x(i) += sum / real(hi - lo);
+  }
+};
+
+// Per-point and per-row quantities for the frame statistics.
+template <class Mem>
+struct KineticEnergy {
+  Kokkos::View<Vec3*, Mem> v;
+  Kokkos::View<real*, Mem> w, mass, out;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const { out(i) = w(i) > 0 ? 0.5 * mass(i) * dot(v(i), v(i)) : 0.0; }
+};
+
+template <class Mem>
+struct SpeedSquared {
+  Kokkos::View<Vec3*, Mem> v;
+  Kokkos::View<real*, Mem> w, out;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const { out(i) = w(i) > 0 ? dot(v(i), v(i)) : 0.0; }
+};
+
+template <class Mem>
+struct EdgeStrain {
+  Kokkos::View<Row*, Mem> rows;
+  Kokkos::View<Vec3*, Mem> x;
+  Kokkos::View<real*, Mem> out;
+  KOKKOS_INLINE_FUNCTION void operator()(long r) const {
+    const Row& row = rows(r);
+    out(r) = row.kind == kRowDistance && row.rest > 0 ? abs_(norm(x(row.idx[1]) - x(row.idx[0])) / row.rest - 1) : 0.0;
+  }
+};
+
+template <class Mem>
+struct CountNonFinite {
+  Kokkos::View<Vec3*, Mem> x;
+  KOKKOS_INLINE_FUNCTION void operator()(long i, long& acc) const { acc += isfinite_(x(i)) ? 0 : 1; }
+};
+
+}  // namespace weft::kernels
