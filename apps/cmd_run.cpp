@@ -2,6 +2,7 @@
 // optionally a hash of every frame; write the frames to an HDF5 cache and/or a Houdini .geo sequence as they
 // are computed, and continue an interrupted cache with --resume.
 #include "apps/cli.hpp"
+#include "backends/body_cleaning.hpp"
 #include "backends/simulation.hpp"
 #include "core/hash.hpp"
 #include "io/cache_file.hpp"
@@ -29,6 +30,7 @@ struct RunOptions {
   bool hash = false, quiet = false;
   std::string output, geo_dir;
   bool resume = false;
+  bool clean = false;
 };
 
 // The paper's three schedules: (iterations, collision passes, substeps).
@@ -66,6 +68,7 @@ std::string resume_command(const RunOptions& o) {
   num("--smoothing", o.smoothing, -1);
   opt("--geo-sequence", o.geo_dir);
   if (o.hash) c += " --hash";
+  if (o.clean) c += " --clean";
   return c + " -o " + o.output + " --resume";
 }
 
@@ -155,6 +158,12 @@ int run(const GlobalOptions& g, const RunOptions& o) {
   if (o.iterations >= 0) st.iterations = o.iterations;
   if (o.collision_passes >= 0) st.collision_passes = o.collision_passes;
   if (o.smoothing >= 0) st.smoothing_iterations = o.smoothing;
+  if (o.clean) {  // the solvability check (docs/solvability.md) replaces the colliders by cleaned ones
+    const BodyCleaning c = clean_body(b, scene);
+    scene.colliders = c.colliders;
+    if (!c.clean()) std::cerr << "weft: warning: the body is not fully cleaned (see weft check)\n";
+    if (!o.quiet) std::printf("%s\n", cleaning_summary(c).c_str());
+  }
   auto sim = make_simulation(b, scene);
   if (!o.quiet)
     std::printf("%s: %zu points, %zu triangles, %ld constraint rows in %d colours, backend %s\n", scene.name.c_str(),
@@ -247,6 +256,7 @@ void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_flag("--quiet", o->quiet, "no per-frame lines");
   cmd->add_option("-o,--output", o->output, "HDF5 cache written frame by frame (readable while the run goes on)");
   cmd->add_option("--geo-sequence", o->geo_dir, "also write each frame as DIR/<scene>.$F4.geo (P and v)");
+  cmd->add_flag("--clean", o->clean, "clean the body colliders first (the solvability check of weft check)");
   cmd->add_flag("--resume", o->resume,
                 "continue the -o cache from its last frame (same scene and settings; --frames may extend it)");
   cmd->callback([&g, &action, o] { action = [&g, o] { return run(g, *o); }; });

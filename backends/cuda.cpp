@@ -1,6 +1,9 @@
-// The solver instantiated for Kokkos::Cuda.
+// The solver and the solvability check instantiated for Kokkos::Cuda. They share one translation unit so
+// that the templates they both use (LBVH, sort, reductions) are instantiated for this backend only once.
 #include "backends/simulation_on.hpp"
+#include "collision/body_cleaning.hpp"
 
 namespace weft {
 std::unique_ptr<Simulation> make_simulation_cuda(const Scene& s) { return std::make_unique<SimulationOn<Kokkos::Cuda>>(s); }
+BodyCleaning clean_body_cuda(const Scene& s, const CleaningSettings& cs) { return clean_body_on<Kokkos::Cuda>(s, cs); }
 }  // namespace weft

@@ -71,7 +71,7 @@ Mesh capsule(Vec3 a, Vec3 b, real radius, int rings, int segments) {
   // A sphere split at its equator, halves moved to a and b, with the seam rings joined.
   const Vec3 axis = normalized(b - a);
   const Vec3 helper = std::fabs(axis.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  const Vec3 e1 = normalized(cross(axis, helper)), e2 = cross(axis, e1);
+  const Vec3 e1 = normalized(cross(axis, helper)), e2 = cross(e1, axis);  // (e1, axis, e2) right-handed: a rotation keeps the faces outward
   if (rings % 2) ++rings;
   Mesh m = uv_sphere({0, 0, 0}, radius, rings, segments);
   for (Vec3& p : m.x) {
