@@ -111,6 +111,7 @@ class Progress {
     if (!tty_) {
       std::printf("frame %d  ke %.3e J  rms speed %.3e m/s  max strain %.3e  %.2f ms\n", fs.frame, fs.kinetic_energy,
                   fs.rms_speed, fs.max_strain, 1e3 * fs.seconds);
+      std::fflush(stdout);  // a log being followed shows each frame as it is done
       return;
     }
     const int total = last_ - first_, width = 30;
