@@ -7,7 +7,7 @@ namespace weft::io {
 
 inline constexpr int kDemoLayers = 4;
 
-// res sets the cloth resolution: 4 res segments around each layer, rings about square quads.
+// res sets the cloth resolution: 4 res segments around each layer, quads a little taller than wide.
 Scene demo_scene(int res);
 long demo_cloth_triangles(int res);
 // The res whose cloth triangle count is nearest to `triangles` (`weft demo --size N`).
