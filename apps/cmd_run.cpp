@@ -1,7 +1,7 @@
 // `weft run <scene>`: simulate a frame range, print per-frame statistics (or a progress bar on a terminal),
 // optionally a hash of every frame; write the frames to an HDF5 cache and/or a Houdini .geo sequence as they
 // are computed, and continue an interrupted cache with --resume.
-#include "apps/cli.hpp"
+#include "apps/run_scene.hpp"
 #include "backends/body_cleaning.hpp"
 #include "backends/simulation.hpp"
 #include "core/hash.hpp"
@@ -20,18 +20,6 @@
 
 namespace weft::cli {
 namespace {
-
-struct RunOptions {
-  std::string scene;
-  int res = 0;
-  std::string frames;
-  std::string schedule;
-  int substeps = -1, iterations = -1, collision_passes = -1, smoothing = -1;
-  bool hash = false, quiet = false;
-  std::string output, geo_dir;
-  bool resume = false;
-  bool clean = false;
-};
 
 // The paper's three schedules: (iterations, collision passes, substeps).
 void apply_schedule(const std::string& name, SolverSettings& st) {
@@ -125,6 +113,7 @@ class Progress {
     if (!tty_) {
       std::printf("frame %d  ke %.3e J  rms speed %.3e m/s  max strain %.3e  %.2f ms\n", fs.frame, fs.kinetic_energy,
                   fs.rms_speed, fs.max_strain, 1e3 * fs.seconds);
+      std::fflush(stdout);  // a log being followed shows each frame as it is done
       return;
     }
     const int total = last_ - first_, width = 30;
@@ -146,7 +135,9 @@ class Progress {
   Clock::time_point start_;
 };
 
-int run(const GlobalOptions& g, const RunOptions& o) {
+}  // namespace
+
+int run_scene(const GlobalOptions& g, const RunOptions& o) {
   const Backend b = resolve_backend(g);
   if (o.resume && o.output.empty()) throw Error("--resume continues a cache: give it with -o CACHE.h5", 2);
   Runtime rt(g.threads);
@@ -241,6 +232,8 @@ int run(const GlobalOptions& g, const RunOptions& o) {
   return 0;
 }
 
+namespace {
+
 void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   auto o = std::make_shared<RunOptions>();
   auto* cmd = app.add_subcommand("run", "simulate a scene");
@@ -259,7 +252,7 @@ void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_flag("--clean", o->clean, "clean the body colliders first (the solvability check of weft check)");
   cmd->add_flag("--resume", o->resume,
                 "continue the -o cache from its last frame (same scene and settings; --frames may extend it)");
-  cmd->callback([&g, &action, o] { action = [&g, o] { return run(g, *o); }; });
+  cmd->callback([&g, &action, o] { action = [&g, o] { return run_scene(g, *o); }; });
 }
 
 const Register reg("run", add_run);

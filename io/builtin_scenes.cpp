@@ -2,6 +2,7 @@
 
 #include "constraints/vellum_cloth.hpp"
 #include "core/error.hpp"
+#include "io/demo_scene.hpp"
 #include "io/procedural.hpp"
 
 #include <cmath>
@@ -159,6 +160,7 @@ struct Entry { const char* name; Scene (*make)(int); int default_res; };
 const Entry kScenes[] = {
     {"hanging-sheet", hanging_sheet, 32}, {"drape-sphere", drape_sphere, 48}, {"layer-stack", layer_stack, 24},
     {"twist", twist, 48},                 {"fast-collider", fast_collider, 32}, {"skirt", skirt, 24},
+    {"demo", demo_scene, 34},  // io/demo_scene.cpp; about 50K cloth triangles
 };
 
 }  // namespace

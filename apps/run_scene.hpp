@@ -1,0 +1,24 @@
+// `weft run` as a function, for commands that run a scene as one of their steps (`weft demo`).
+#pragma once
+#include "apps/cli.hpp"
+
+#include <string>
+
+namespace weft::cli {
+
+struct RunOptions {
+  std::string scene;
+  int res = 0;
+  std::string frames;
+  std::string schedule;
+  int substeps = -1, iterations = -1, collision_passes = -1, smoothing = -1;
+  bool hash = false, quiet = false;
+  std::string output, geo_dir;
+  bool resume = false;
+  bool clean = false;  // run the solvability check on the colliders first
+};
+
+// Simulates o.scene as `weft run` does (cache, .geo sequence, resume, progress, SIGINT); returns the exit code.
+int run_scene(const GlobalOptions& g, const RunOptions& o);
+
+}  // namespace weft::cli

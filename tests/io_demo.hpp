@@ -1,0 +1,151 @@
+// The demo: builtin:demo (a figure of capsules in a four-layer dress) has its layers, an animated body and a
+// size that scales; a few frames stay finite with a pinned hash; contact sheets are valid PNGs; `weft demo`
+// and `weft render` write their files.
+#include "io/builtin_scenes.hpp"
+#include "io/cache_file.hpp"
+#include "io/contact_sheet.hpp"
+#include "io/demo_scene.hpp"
+#include "tests/solver_scene_fixture.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace weft;
+using namespace weft::io;
+
+struct DemoDir {
+  fs::path path;
+  explicit DemoDir(const std::string& name)
+      : path(fs::temp_directory_path() / ("weft_io_demo_" + std::to_string(::getpid()) + "_" + name)) {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~DemoDir() { fs::remove_all(path); }
+  std::string file(const std::string& name) const { return (path / name).string(); }
+};
+
+// Width and height from a PNG's signature and IHDR chunk; {0, 0} when the file is not a PNG.
+std::pair<int, int> png_size(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char b[24] = {};
+  if (!in.read(reinterpret_cast<char*>(b), 24)) return {0, 0};
+  const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (std::memcmp(b, signature, 8) != 0 || std::memcmp(b + 12, "IHDR", 4) != 0) return {0, 0};
+  const auto be32 = [&](int at) { return int(b[at]) << 24 | int(b[at + 1]) << 16 | int(b[at + 2]) << 8 | int(b[at + 3]); };
+  return {be32(16), be32(20)};
+}
+
+TEST(WEFT_TEST_SUITE, demo_scene_has_four_layers_on_a_moving_body) {
+  const Scene s = make_builtin_scene("demo", {6});
+  EXPECT_NO_THROW(validate_scene(s));
+  EXPECT_EQ(std::set<int>(s.points.layer.begin(), s.points.layer.end()), (std::set<int>{0, 1, 2, 3}));
+  std::set<real> thickness(s.points.thickness.begin(), s.points.thickness.end());
+  EXPECT_EQ(thickness.size(), 4u);  // one per layer
+  ASSERT_EQ(s.colliders.size(), 1u);
+  const Animation& body = s.colliders[0].motion;
+  ASSERT_EQ(int(body.frames.size()), s.settings.frame_end - s.settings.frame_start + 1);
+  EXPECT_GT(body.frames.size(), 24u);
+  real moved = 0;
+  for (size_t k = 0; k < body.frames[0].size(); ++k) moved = std::max(moved, norm(body.frames[12][k] - body.frames[0][k]));
+  EXPECT_GT(moved, 0.05);  // legs and arms swing, the figure turns
+  // The sewn rings follow the body: their targets move with it and start where the cloth is.
+  ASSERT_FALSE(s.kinematic_point.empty());
+  ASSERT_EQ(s.pin_targets.frames.size(), body.frames.size());
+  for (size_t k = 0; k < s.kinematic_point.size(); ++k)
+    EXPECT_EQ(norm(s.pin_targets.frames[0][s.kinematic_target[k]] - s.points.position[s.kinematic_point[k]]), 0);
+  EXPECT_GT(norm(s.pin_targets.frames[12][0] - s.pin_targets.frames[0][0]), 0.01);
+}
+
+TEST(WEFT_TEST_SUITE, demo_size_sets_the_triangle_count) {
+  for (long want : {2000L, 50000L, 300000L}) {
+    const int res = demo_res_for_triangles(want);
+    EXPECT_NEAR(double(demo_cloth_triangles(res)), double(want), 0.1 * want) << want;
+  }
+  EXPECT_GT(demo_cloth_triangles(demo_res_for_triangles(300000)), 280000);
+  const int res = demo_res_for_triangles(2000);
+  EXPECT_EQ(long(make_builtin_scene("demo", {res}).triangles.size()), demo_cloth_triangles(res));
+  EXPECT_LT(demo_cloth_triangles(8), demo_cloth_triangles(16));
+}
+
+TEST(WEFT_TEST_SUITE, demo_frames_stay_finite_with_a_pinned_hash) {
+  Scene s = make_builtin_scene("demo", {4});
+  uint64_t h = 0;
+  FrameStats last;
+  const std::vector<Vec3> x = test::run_frames<WEFT_TEST_EXECSPACE>(s, 3, &h, &last);
+  EXPECT_EQ(last.non_finite, 0);
+  for (const Vec3& p : x) ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+  EXPECT_LT(last.max_strain, 0.5);
+  EXPECT_EQ(hash_hex(h), "65eda0f8c7f89333");
+}
+
+TEST(WEFT_TEST_SUITE, contact_sheet_is_a_png_of_the_grid) {
+  const DemoDir dir("sheet");
+  const Scene s = make_builtin_scene("demo", {4});
+  CacheHeader header{s.name, "serial", s.points.size(), s.triangles, s.settings};
+  const std::string cache = dir.file("tiny.h5");
+  {
+    CacheWriter w(cache, header);
+    for (int f = s.settings.frame_start; f < s.settings.frame_start + 5; ++f) {
+      FrameStats fs;
+      fs.frame = f;
+      std::vector<Vec3> x = s.points.position;
+      for (Vec3& p : x) p.y -= 0.01 * (f - s.settings.frame_start);
+      w.append(fs, x, s.points.velocity);
+    }
+    w.close();
+  }
+  const CacheReader reader(cache);
+  const SheetContent c = cache_sheet(reader, &s, 1, 5, 3);
+  ASSERT_EQ(c.frames.size(), 3u);
+  EXPECT_EQ(c.frames[0].frame, 1);
+  EXPECT_EQ(c.frames[1].frame, 3);
+  EXPECT_EQ(c.frames[2].frame, 5);
+  EXPECT_FALSE(c.frames[0].collider.empty());
+  const std::string png = dir.file("sheet.png");
+  write_contact_sheet(png, c, 2, 100);
+  EXPECT_EQ(png_size(png), (std::pair<int, int>{200, 36 + 2 * 100}));
+  // Without the scene: colours by piece (four layers, four pieces), no colliders.
+  const SheetContent plain = cache_sheet(reader, nullptr, 1, 5, 8);
+  EXPECT_EQ(plain.frames.size(), 5u);
+  EXPECT_EQ(std::set<int>(plain.triangle_colour.begin(), plain.triangle_colour.end()), (std::set<int>{0, 1, 2, 3}));
+  EXPECT_TRUE(plain.frames[0].collider.empty());
+  // Frames the cache lacks, or a scene it was not computed from: an error, no file.
+  EXPECT_THROW(cache_sheet(reader, nullptr, 1, 9, 3), std::runtime_error);
+  const Scene other = make_builtin_scene("demo", {6});
+  EXPECT_THROW(cache_sheet(reader, &other, 1, 5, 3), std::runtime_error);
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir.path)) names.insert(e.path().filename().string());
+  EXPECT_EQ(names, (std::set<std::string>{"sheet.png", "tiny.h5"}));
+}
+
+// `weft demo` and `weft render` (the binary, serial backend), when it is built.
+TEST(WEFT_TEST_SUITE, cli_demo_writes_a_cache_and_a_contact_sheet) {
+  const std::string bin = std::string(WEFT_BIN_DIR) + "/weft";
+  if (!fs::exists(bin)) GTEST_SKIP() << bin << " is not built";
+  const DemoDir dir("cli");
+  const auto weft = [&](const std::string& args) {
+    const int st = std::system((bin + " --backend serial " + args + " > '" + dir.file("log") + "' 2>&1").c_str());
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  };
+  const std::string out = dir.file("out");
+  ASSERT_EQ(weft("demo --size 700 --frames 1-3 --out " + out), 0);
+  const CacheReader cache(out + "/demo.h5");
+  EXPECT_EQ(cache.frames(), (std::vector<int>{1, 2, 3}));
+  EXPECT_EQ(png_size(out + "/contact-sheet.png"), (std::pair<int, int>{3 * 360, 36 + 360}));
+  ASSERT_EQ(weft("render " + out + "/demo.h5 -o " + dir.file("any.png") + " --count 2 --cell 128"), 0);
+  EXPECT_EQ(png_size(dir.file("any.png")), (std::pair<int, int>{2 * 128, 36 + 128}));
+  EXPECT_EQ(weft("render " + out + "/demo.h5 -o " + dir.file("bad.png") + " --frames 1-9"), 2);
+  EXPECT_FALSE(fs::exists(dir.file("bad.png")));
+}
+
+}  // namespace
