@@ -43,6 +43,8 @@ Differences that remain (stated in the output too):
   - weft's hanging-sheet has self collision off (it is the solver's reference scene); Newton is run on it
     both with self-contact (as the comparison asks) and without (as weft's scene); --hanging-contact picks.
   - weft computes in double precision, bitwise reproducibly; Newton (Warp) in single precision.
+  - `weft bench` fences between its stages to time them (a little slower than `weft run`); Newton replays
+    one CUDA graph per frame with no fences inside.
 
 Usage: see bench/peers/README.md. CPU smoke test: newton_compare.py --quick --device cpu --weft build/openmp/bin/weft
 """
@@ -198,21 +200,26 @@ def run_newton(scene, frames, device, iterations, self_contact, tri_ke, out_dir)
             else:
                 frame()
                 if use_graph:  # after the uncaptured warm-up frame (kernels compiled, buffers allocated)
-                    with wp.ScopedCapture() as cap:
-                        frame()
-                    graph = cap.graph
+                    try:
+                        with wp.ScopedCapture() as cap:
+                            frame()
+                        graph = cap.graph
+                    except Exception as e:  # noqa: BLE001 - a solver that cannot be captured runs uncaptured
+                        print("  (no CUDA graph: %s)" % e, flush=True)
+                        use_graph = False
             wp.synchronize_device()
             times.append(time.perf_counter() - t0)
             if f == 0:
                 setup_s = time.perf_counter() - t_setup
         x = s0.particle_q.numpy().astype(np.float64)
-    obj = os.path.join(out_dir, "newton_%s_%d.obj" % (scene.name, scene.res))
+    obj = os.path.join(out_dir, "newton_%s_%d_contact-%s.obj" % (scene.name, scene.res, "on" if self_contact else "off"))
     write_obj(obj, x, scene.tris)
     timed = times[1:] if len(times) > 1 else times
     return {
         "ms_per_frame": 1e3 * sum(timed) / len(timed), "frames_timed": len(timed), "first_frame_s": times[0],
-        "setup_and_first_frame_s": setup_s, "finite": bool(np.isfinite(x).all()),
-        "lowest_y": float(x[:, 1].min()), "obj": obj, "settings": settings,
+        "setup_and_first_frame_s": setup_s, "cuda_graph": graph is not None, "finite": bool(np.isfinite(x).all()),
+        "lowest_y": float(x[:, 1].min()), "pin_error": float(np.abs(x[scene.held] - scene.targets(frames)).max()),
+        "obj": obj, "settings": settings,
     }
 
 
@@ -246,7 +253,7 @@ def run_weft(args, scene, frames, out_dir):
     per_frame = [int(v) for v in re.findall(r"^frame \d+ .*intersections (\d+)$", out, re.M)]
     return {
         "ms_per_frame": r["ms_per_frame"], "frames_timed": max(1, frames - 1), "intersections": last_count(out),
-        "max_intersections_any_frame": max(per_frame) if per_frame else None, "triangles": b["triangles"],
+        "max_intersections_any_frame": max(per_frame) if per_frame else None, "weft_triangles": b["triangles"],
         "backend": b["backend"],
         "settings": {"substeps": r["substeps"], "iterations": r["iterations"], "collision_passes": r["collision_passes"],
                      "fps": FPS, "density": DENSITY, "stretch": "distance 1e10 N/m", "bend": "1e-3 N m/rad",
@@ -267,9 +274,11 @@ def table(rows):
         brief = "%d substeps x %d iter" % (st["substeps"], st["iterations"])
         if r["solver"].startswith("newton"):
             brief += ", self-contact %s" % ("on" if st["self_contact"] else "off")
-            brief += "" if r.get("finite", True) else ", NOT FINITE"
+            brief += ", lowest y %.3f m, pin error %.1e m" % (r["lowest_y"], r["pin_error"])
+            brief += "" if r["finite"] else ", NOT FINITE"
         else:
             brief += ", %d collision passes, self collision %s" % (st["collision_passes"], "on" if st["self_collision"] else "off")
+            brief += ", max intersections over frames %s" % r["max_intersections_any_frame"]
         inter = "-" if r["intersections"] is None else str(r["intersections"])
         body += "| %s | %d | %s | %.2f | %d | %s | %s |\n" % (r["scene"], r["triangles"], r["solver"], r["ms_per_frame"],
                                                              r["frames_timed"], inter, brief)
@@ -294,7 +303,8 @@ def main():
                     help="Newton self-contact on the hanging sheet (weft's scene has none)")
     ap.add_argument("--quick", action="store_true", help="CPU smoke test: hanging res 10, twist res 10, 4 frames")
     ap.add_argument("--skip-newton", action="store_true")
-    ap.add_argument("--out", default="peer-results", help="output folder")
+    ap.add_argument("--out", default="peer-results", help="folder for results.json and results.md")
+    ap.add_argument("--work", default=None, help="folder for the meshes and weft's JSON (default: --out)")
     args = ap.parse_args()
 
     if args.quick:
@@ -307,13 +317,16 @@ def main():
         twist_res = args.twist_res
     if args.frames:
         frames = args.frames
+    work = args.work or args.out
     os.makedirs(args.out, exist_ok=True)
+    os.makedirs(work, exist_ok=True)
 
     device = args.device
     wp_version = newton_version = None
     if not args.skip_newton:
         import warp as wp
         import newton
+        wp.config.quiet = True  # no per-module load lines
         wp.init()
         device = device or ("cuda:0" if wp.is_cuda_available() else "cpu")
         wp_version, newton_version = wp.__version__, newton.__version__
@@ -333,8 +346,9 @@ def main():
         tri = len(sc.tris)
         print("%s res %d: %d triangles, %d frames" % (sc.name, sc.res, tri, n), flush=True)
         if args.weft:
-            w = run_weft(args, sc, n, args.out)
-            assert w["triangles"] == tri, "weft's %s has %d triangles, this script's %d" % (sc.name, w["triangles"], tri)
+            w = run_weft(args, sc, n, work)
+            if w.pop("weft_triangles") != tri:
+                raise SystemExit("weft's %s has other triangles than this script's (%d)" % (sc.name, tri))
             rows.append(dict(scene=sc.name, res=sc.res, triangles=tri, solver="weft (%s)" % w["backend"], **w))
             print("  weft: %.2f ms/frame, %s intersections" % (w["ms_per_frame"], w["intersections"]), flush=True)
         if not args.skip_newton:
@@ -342,7 +356,7 @@ def main():
             if sc.name == "hanging-sheet" and args.hanging_contact == "both":
                 modes = [True, False]
             for contact in modes:
-                r = run_newton(sc, n, device, args.newton_iterations, contact, args.tri_ke, args.out)
+                r = run_newton(sc, n, device, args.newton_iterations, contact, args.tri_ke, work)
                 r["intersections"] = count_obj(args, r["obj"])
                 rows.append(dict(scene=sc.name, res=sc.res, triangles=tri, solver="newton-vbd (%s)" % device, **r))
                 print("  newton (self-contact %s): %.2f ms/frame, %s intersections, first frame %.1f s" % (
