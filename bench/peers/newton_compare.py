@@ -43,6 +43,8 @@ Differences that remain (stated in the output too):
   - weft's hanging-sheet has self collision off (it is the solver's reference scene); Newton is run on it
     both with self-contact (as the comparison asks) and without (as weft's scene); --hanging-contact picks.
   - weft computes in double precision, bitwise reproducibly; Newton (Warp) in single precision.
+  - Newton keeps at most 64 vertex-triangle and 128 edge-edge contact candidates per element and drops the
+    rest silently (twice its defaults, as its cloth_twist example); weft's contact lists are not capped.
   - `weft bench` fences between its stages to time them (a little slower than `weft run`); Newton replays
     one CUDA graph per frame with no fences inside.
 
