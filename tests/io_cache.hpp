@@ -430,6 +430,22 @@ TEST(WEFT_TEST_SUITE, cli_unwritable_outputs_fail_and_leave_nothing) {
   EXPECT_EQ(dir.entries(), std::set<std::string>{"blocker"});
 }
 
+TEST(WEFT_TEST_SUITE, cli_check_intersections_counts_a_static_obj_mesh) {
+  WEFT_NEED_CLI();
+  const CacheDir dir("cli_check_obj");
+  Cli weft(dir);
+  // Triangle 1 pierces triangle 2; triangle 3 shares a vertex with 1 (adjacent, not counted) and is far from 2.
+  std::ofstream(dir.file("m.obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                      "v 0.2 0.2 -0.5\nv 0.3 0.2 0.5\nv 0.2 0.3 0.5\n"
+                                      "v -1 0 0\nv 0 -1 0\n"
+                                      "f 1 2 3\nf 4 5 6\nf 1 7 8\n";
+  ASSERT_EQ(weft("check-intersections " + dir.file("m.obj")), 0) << weft.output;
+  EXPECT_EQ(weft.output, "intersections 1\n");
+  std::ofstream(dir.file("bad.obj")) << "v 0 0 0\nf 1 2 3\n";
+  EXPECT_NE(weft("check-intersections " + dir.file("bad.obj")), 0);
+  EXPECT_NE(weft.output.find("bad.obj"), std::string::npos) << weft.output;
+}
+
 TEST(WEFT_TEST_SUITE, cli_info_describes_scene_and_cache_files) {
   WEFT_NEED_CLI();
   const CacheDir dir("cli_info");
