@@ -79,7 +79,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
     smoothing_ = st.impact_zone_smoothing;
     epsilon_ = st.impact_zone_epsilon;
     sweeps_ = st.impact_zone_sweeps;
-    npoints_ = long(s.points.size());
     // Cloth side.
     cloth_tris_ = upload_tris(s.triangles);
     cloth_rmask_ = upload(representative_features(s.triangles, int(s.points.size())), "weft::cloth_rmask");
@@ -130,7 +129,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     if (self_) n += narrow(cloth, cloth, /*self*/ true, n);
     if (collider_boxes_.extent(0) > 0) n += narrow(cloth, collider_side(s), false, n);
     ncontacts_ = n;
-    offsets_ = colouring_.colour(s.exec, contacts_, n, npoints_);
+    offsets_ = colouring_.colour(s.exec, contacts_, n, s.w);
     stats_.contacts = n;
     stats_.colours = long(offsets_.size()) - 1;
   }
@@ -247,7 +246,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   bool self_ = true, smoothing_ = true;
   real epsilon_ = 0.1;
   int sweeps_ = 4;
-  long npoints_ = 0, ncontacts_ = 0;
+  long ncontacts_ = 0;
   View<int* [3]> cloth_tris_, collider_tris_, collider_nb_;
   View<uint8_t*> cloth_rmask_, collider_rmask_;
   View<real*> cloth_th_, cloth_fr_, cloth_dfr_, cloth_margin_;

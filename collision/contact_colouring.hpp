@@ -33,9 +33,17 @@ struct Start {
 };
 
 // Every uncoloured contact claims its moving points with its key (integer atomic max).
+// A contact moves point k when k is a cloth point with nonzero weight b and inverse mass w: only such points
+// can conflict (projection writes no other).
+template <class Mem>
+KOKKOS_INLINE_FUNCTION bool moves(const Contact& c, int k, const Kokkos::View<real*, Mem>& w) {
+  return c.p[k] >= 0 && c.b[k] != 0 && w(c.p[k]) > 0;
+}
+
 template <class Mem>
 struct Claim {
   Kokkos::View<Contact*, Mem> c;
+  Kokkos::View<real*, Mem> w;
   Kokkos::View<uint32_t*, Mem> todo;
   Kokkos::View<uint64_t*, Mem> owner;
   int round;
@@ -43,7 +51,7 @@ struct Claim {
     const long i = todo(t);
     const uint64_t key = priority(i, round);
     for (int k = 0; k < 4; ++k)
-      if (c(i).p[k] >= 0 && c(i).b[k] != 0) Kokkos::atomic_fetch_max(&owner(c(i).p[k]), key);
+      if (moves(c(i), k, w)) Kokkos::atomic_fetch_max(&owner(c(i).p[k]), key);
   }
 };
 
@@ -51,6 +59,7 @@ struct Claim {
 template <class Mem>
 struct Take {
   Kokkos::View<Contact*, Mem> c;
+  Kokkos::View<real*, Mem> w;
   Kokkos::View<uint32_t*, Mem> todo;
   Kokkos::View<uint64_t*, Mem> owner;
   Kokkos::View<int*, Mem> col;
@@ -60,7 +69,7 @@ struct Take {
     const uint64_t key = priority(i, round);
     bool win = true;
     for (int k = 0; k < 4; ++k)
-      if (c(i).p[k] >= 0 && c(i).b[k] != 0) win = win && owner(c(i).p[k]) == key;
+      if (moves(c(i), k, w)) win = win && owner(c(i).p[k]) == key;
     if (win) col(i) = round;
   }
 };
@@ -120,7 +129,10 @@ class ContactColouring {
   using Mem = typename Exec::memory_space;
 
   // Reorders contacts(0..n) by colour; returns the colour ranges [offsets[c], offsets[c+1]).
-  std::vector<long> colour(const Exec& exec, Kokkos::View<Contact*, Mem>& contacts, long n, long points) {
+  // w: the cloth points' inverse masses (points that cannot move never conflict).
+  std::vector<long> colour(const Exec& exec, Kokkos::View<Contact*, Mem>& contacts, long n,
+                           const Kokkos::View<real*, Mem>& w) {
+    const long points = long(w.extent(0));
     using namespace colouring_detail;
     std::vector<long> offsets{0};
     if (n == 0) return offsets;
@@ -140,9 +152,9 @@ class ContactColouring {
     int rounds = 0;
     for (long left = n; left > 0; ++rounds) {
       Kokkos::parallel_for("weft::jp_claim", Kokkos::RangePolicy<Exec>(exec, 0, left),
-                           Claim<Mem>{contacts, todo, owner_, rounds});
+                           Claim<Mem>{contacts, w, todo, owner_, rounds});
       Kokkos::parallel_for("weft::jp_take", Kokkos::RangePolicy<Exec>(exec, 0, left),
-                           Take<Mem>{contacts, todo, owner_, colour_, rounds});
+                           Take<Mem>{contacts, w, todo, owner_, colour_, rounds});
       left = count_scan_fill(exec, left, next_, StillUncoloured<Mem>{colour_, todo},
                              KeepUncoloured<Mem>{colour_, todo, spare});
       std::swap(todo, spare);
