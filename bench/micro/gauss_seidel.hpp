@@ -1,0 +1,38 @@
+// One constraint iteration of the XPBD solver: Solver::gauss_seidel_sweep (core/solver.hpp), one kernel
+// launch per colour over every distance and bend row, on the hanging sheet (cloth_grid.hpp) one substep
+// after the start, so positions, lambdas and x_start are those of a running solve.
+#pragma once
+#include "bench/micro/bench_common.hpp"
+#include "bench/micro/cloth_grid.hpp"
+#include "core/solver.hpp"
+
+namespace {
+
+using Exec = WEFT_BENCH_EXECSPACE;
+
+struct SweepFixture {
+  std::unique_ptr<weft::Solver<Exec>> solver;
+  weft::real h = 0;
+  explicit SweepFixture(long triangles) {
+    const weft::Scene scene = weft::bench::hanging_sheet(triangles);
+    h = 1 / (scene.settings.fps * scene.settings.substeps);
+    solver = std::make_unique<weft::Solver<Exec>>(scene);
+    solver->substep(0);
+    Exec().fence();
+  }
+};
+
+void gauss_seidel_sweep(benchmark::State& state) {
+  SweepFixture& f = weft::bench::fixture<SweepFixture>(state.range(0));
+  const Exec exec;
+  for (auto _ : state) {
+    f.solver->gauss_seidel_sweep(f.h);
+    exec.fence();
+  }
+  weft::bench::items(state, f.solver->row_count());
+  state.counters["rows"] = double(f.solver->row_count());
+  state.counters["colours"] = f.solver->colour_count();
+}
+BENCHMARK(gauss_seidel_sweep)->Apply(weft::bench::triangles);
+
+}  // namespace
