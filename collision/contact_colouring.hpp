@@ -46,9 +46,11 @@ struct Claim {
   Kokkos::View<real*, Mem> w;
   Kokkos::View<uint32_t*, Mem> todo;
   Kokkos::View<uint64_t*, Mem> owner;
+  Kokkos::View<int*, Mem> col;
   int round;
   KOKKOS_INLINE_FUNCTION void operator()(long t) const {
     const long i = todo(t);
+    if (col(i) >= 0) return;  // coloured in an earlier round since the last compaction
     const uint64_t key = priority(i, round);
     for (int k = 0; k < 4; ++k)
       if (moves(c(i), k, w)) Kokkos::atomic_fetch_max(&owner(c(i).p[k]), key);
@@ -66,6 +68,7 @@ struct Take {
   int round;
   KOKKOS_INLINE_FUNCTION void operator()(long t) const {
     const long i = todo(t);
+    if (col(i) >= 0) return;
     const uint64_t key = priority(i, round);
     bool win = true;
     for (int k = 0; k < 4; ++k)
@@ -148,13 +151,17 @@ class ContactColouring {
     auto todo = todo_, spare = spare_;
     Kokkos::parallel_for("weft::jp_init", Kokkos::RangePolicy<Exec>(exec, 0, n), Start<Mem>{colour_, todo});
     // Keys carry the round in their top bits, so a point's stale claim from an earlier round always loses
-    // and owners never need resetting; the uncoloured contacts are compacted after every round.
+    // and owners never need resetting. The uncoloured contacts are compacted (and their count read back,
+    // a host-device sync) only every kRoundsPerSync rounds; contacts coloured in between sit the rest out.
+    constexpr int kRoundsPerSync = 8;
     int rounds = 0;
-    for (long left = n; left > 0; ++rounds) {
-      Kokkos::parallel_for("weft::jp_claim", Kokkos::RangePolicy<Exec>(exec, 0, left),
-                           Claim<Mem>{contacts, w, todo, owner_, rounds});
-      Kokkos::parallel_for("weft::jp_take", Kokkos::RangePolicy<Exec>(exec, 0, left),
-                           Take<Mem>{contacts, w, todo, owner_, colour_, rounds});
+    for (long left = n; left > 0;) {
+      for (int k = 0; k < kRoundsPerSync; ++k, ++rounds) {
+        Kokkos::parallel_for("weft::jp_claim", Kokkos::RangePolicy<Exec>(exec, 0, left),
+                             Claim<Mem>{contacts, w, todo, owner_, colour_, rounds});
+        Kokkos::parallel_for("weft::jp_take", Kokkos::RangePolicy<Exec>(exec, 0, left),
+                             Take<Mem>{contacts, w, todo, owner_, colour_, rounds});
+      }
       left = count_scan_fill(exec, left, next_, StillUncoloured<Mem>{colour_, todo},
                              KeepUncoloured<Mem>{colour_, todo, spare});
       std::swap(todo, spare);
@@ -168,7 +175,11 @@ class ContactColouring {
     Kokkos::View<long*, Mem> first(Kokkos::view_alloc(exec, std::string("weft::colour_first")), rounds + 1);
     Kokkos::parallel_for("weft::colour_bounds", Kokkos::RangePolicy<Exec>(exec, 0, n), ColourBounds<Mem>{kv, first, n});
     auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), first);
-    offsets.assign(h.data(), h.data() + rounds + 1);
+    // Every round colours at least one contact until none is left (the largest key always wins), so the
+    // colours are 0..k-1 with first(k) = n; the batch's last rounds may have found nothing to colour.
+    int colours = 1;
+    while (h(colours) != n) ++colours;
+    offsets.assign(h.data(), h.data() + colours + 1);
     std::swap(contacts, sorted_);
     return offsets;
   }

@@ -17,18 +17,20 @@ KOKKOS_INLINE_FUNCTION uint32_t morton_spread10(uint32_t v) {
   return v;
 }
 
-// Cell 0..1023 of x in [lo, hi]; a flat extent, NaN or anything below lo gives 0, anything above hi 1023.
-KOKKOS_INLINE_FUNCTION uint32_t morton_cell(real x, real lo, real hi) {
-  const real extent = hi - lo;
+// Cell 0..1023 of x in [lo, lo + extent]; a zero extent, NaN or anything below lo gives 0, anything above 1023.
+KOKKOS_INLINE_FUNCTION uint32_t morton_cell(real x, real lo, real extent) {
   const real s = extent > 0 ? (x - lo) / extent * 1024 : 0;
   return s > 0 ? (s < 1023 ? uint32_t(s) : 1023u) : 0u;
 }
 
-// 30-bit Morton code of p within bounds (x in the highest of each bit triple).
+// 30-bit Morton code of p within bounds (x in the highest of each bit triple). The cells are cubes, sized
+// by the largest side of the bounds: scaling each axis on its own would give the millimetres across a
+// flat cloth as many bits as its metres, and the tree would split on that noise.
 KOKKOS_INLINE_FUNCTION uint32_t morton30(Vec3 p, const Aabb& bounds) {
-  return (morton_spread10(morton_cell(p.x, bounds.lo.x, bounds.hi.x)) << 2) |
-         (morton_spread10(morton_cell(p.y, bounds.lo.y, bounds.hi.y)) << 1) |
-         morton_spread10(morton_cell(p.z, bounds.lo.z, bounds.hi.z));
+  const real e = max_(bounds.hi.x - bounds.lo.x, max_(bounds.hi.y - bounds.lo.y, bounds.hi.z - bounds.lo.z));
+  return (morton_spread10(morton_cell(p.x, bounds.lo.x, e)) << 2) |
+         (morton_spread10(morton_cell(p.y, bounds.lo.y, e)) << 1) |
+         morton_spread10(morton_cell(p.z, bounds.lo.z, e));
 }
 
 // The LBVH sort key: code in the high 32 bits, primitive index in the low 32, so keys are unique and ties

@@ -42,12 +42,40 @@ struct NarrowSettings {
   real static_friction = 0.5, dynamic_friction = 0.5;
   real layer_shock = 4;
   bool self = true;                   // both sides cloth (start-side normals, parallel edge rule)
+  // CCD: a box is reported once |F| varies by less than max(ccd.tolerance, ccd_tolerance_scale * r) over
+  // it. A false positive only adds a contact that stays inactive while C >= 0, and a coarse tolerance keeps
+  // near misses (cloth sliding past cloth just outside r) from exhausting the search.
+  real ccd_tolerance_scale = 0.1;
   CcdSettings ccd{1e-6, 2000};
 };
 
 namespace narrow_detail {
 
 KOKKOS_INLINE_FUNCTION bool shares(int a, int b, int c, int d) { return a == c || a == d || b == c || b == d; }
+
+// The minimum separation of a pair's CCD. A pair that starts the substep farther apart than the proximity
+// reach must not come within r (the two thicknesses). A pair already in contact at the start is held by
+// its proximity contact, so its CCD only has to catch a crossing (separation 0): CCD with separation r on
+// a pair that rests at distance r is degenerate (|F| ~ r over a whole region of the parameter box), and
+// resting layers would exhaust the search on every pair.
+KOKKOS_INLINE_FUNCTION real ccd_separation(real d0, real r, const NarrowSettings& s) {
+  return d0 < s.detect_scale * r ? real(0) : r;
+}
+// A point whose closest point on face f lies on an edge or a corner of f has the same closest point on
+// every face around that edge or corner: only the feature's representative triangle keeps the proximity
+// contact, so a point resting over a vertex of the next layer makes one contact, not six.
+template <class Mem>
+KOKKOS_INLINE_FUNCTION bool owns_closest_feature(const SideMesh<Mem>& F, int f, real u, real v, real w) {
+  const int zeros = (u == 0) + (v == 0) + (w == 0);
+  const uint8_t m = F.rmask(f);
+  if (zeros == 2) return (m >> (u != 0 ? 0 : v != 0 ? 1 : 2)) & 1;        // corner
+  if (zeros == 1) return (m >> (3 + (w == 0 ? 0 : u == 0 ? 1 : 2))) & 1;  // edge (0: ab, 1: bc, 2: ca)
+  return true;
+}
+
+KOKKOS_INLINE_FUNCTION CcdSettings ccd_settings(real r, const NarrowSettings& s) {
+  return CcdSettings{max_(s.ccd.tolerance, s.ccd_tolerance_scale * r), s.ccd.max_iterations};
+}
 
 template <class Mem>
 KOKKOS_INLINE_FUNCTION bool vf_hit(const SideMesh<Mem>& P, int p, const SideMesh<Mem>& F, int f, real r,
@@ -56,14 +84,15 @@ KOKKOS_INLINE_FUNCTION bool vf_hit(const SideMesh<Mem>& P, int p, const SideMesh
   real u, v, w;
   const real d2 = point_triangle_distance2(P.x(p), F.x(a), F.x(b), F.x(c), u, v, w);
   const real lim = s.detect_scale * r;
-  if (d2 < lim * lim) return true;
+  if (d2 < lim * lim) return owns_closest_feature(F, f, u, v, w);
   // Linear motion moves the point-triangle vector by at most the largest relative displacement of p
-  // against a corner, so a pair that starts farther apart than that plus r cannot touch: skip the CCD.
+  // against a corner, so a pair that starts farther apart than that plus the CCD separation cannot touch.
   const Vec3 dp = P.x(p) - P.xs(p);
   const real D = sqrt_(max_(norm2(dp - (F.x(a) - F.xs(a))), max_(norm2(dp - (F.x(b) - F.xs(b))), norm2(dp - (F.x(c) - F.xs(c))))));
   const real d0 = sqrt_(point_triangle_distance2(P.xs(p), F.xs(a), F.xs(b), F.xs(c), u, v, w));
-  if (d0 - D > r + 1e-9 * (1 + d0)) return false;
-  return ccd_vertex_face(P.xs(p), F.xs(a), F.xs(b), F.xs(c), P.x(p), F.x(a), F.x(b), F.x(c), r, s.ccd).hit;
+  const real ms = ccd_separation(d0, r, s);
+  if (d0 - D > ms + 1e-9 * (1 + d0)) return false;
+  return ccd_vertex_face(P.xs(p), F.xs(a), F.xs(b), F.xs(c), P.x(p), F.x(a), F.x(b), F.x(c), ms, ccd_settings(r, s)).hit;
 }
 
 KOKKOS_INLINE_FUNCTION bool not_parallel(Vec3 ea, Vec3 eb, real min_sin) {
@@ -85,8 +114,9 @@ KOKKOS_INLINE_FUNCTION bool ee_hit(const SideMesh<Mem>& A, int a0, int a1, const
   const Vec3 da0 = A.x(a0) - A.xs(a0), da1 = A.x(a1) - A.xs(a1), db0 = B.x(b0) - B.xs(b0), db1 = B.x(b1) - B.xs(b1);
   const real D = sqrt_(max_(max_(norm2(da0 - db0), norm2(da0 - db1)), max_(norm2(da1 - db0), norm2(da1 - db1))));
   const real d0 = sqrt_(segment_segment_distance2(A.xs(a0), A.xs(a1), B.xs(b0), B.xs(b1), sa, tb));
-  if (d0 - D > r + 1e-9 * (1 + d0)) return false;
-  return ccd_edge_edge(A.xs(a0), A.xs(a1), B.xs(b0), B.xs(b1), A.x(a0), A.x(a1), B.x(b0), B.x(b1), r, s.ccd).hit;
+  const real ms = ccd_separation(d0, r, s);
+  if (d0 - D > ms + 1e-9 * (1 + d0)) return false;
+  return ccd_edge_edge(A.xs(a0), A.xs(a1), B.xs(b0), B.xs(b1), A.x(a0), A.x(a1), B.x(b0), B.x(b1), ms, ccd_settings(r, s)).hit;
 }
 
 template <class Mem>

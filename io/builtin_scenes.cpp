@@ -5,6 +5,7 @@
 #include "io/demo_scene.hpp"
 #include "io/procedural.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace weft::io {
@@ -122,12 +123,15 @@ Scene skirt(int res) {
   Scene s;
   s.name = "builtin:skirt";
   const int segments = 4 * res, rings = res;
+  // Thickness at most a quarter of the ring spacing, so a point stays out of reach of its own layer's
+  // neighbouring faces; adjacent layers start 2.8 thicknesses apart (radially), outside contact reach.
+  const real thickness = std::min(0.003, 0.25 * 0.45 / rings);
   for (int l = 0; l < 5; ++l) {
-    const real gap = 0.006 * l;
+    const real gap = 2.8 * thickness * l;
     const Mesh t = tube(0.55, 1.0, rings, segments, 0.30 + gap, 0.16 + gap);
     ClothMaterial mat;
     mat.layer = l;
-    mat.thickness = 0.003;
+    mat.thickness = thickness;
     const int first = add_cloth_piece(s, t.x, t.tris, mat);
     for (int k = 0; k < segments; ++k) {  // waistband follows the body
       s.kinematic_point.push_back(first + rings * segments + k);

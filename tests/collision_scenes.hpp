@@ -66,7 +66,7 @@ TEST(WEFT_TEST_SUITE, collision_scene_hash_is_pinned) {
   weft::Scene s = weft::io::make_builtin_scene("drape-sphere", {8});
   uint64_t h = 0;
   weft::test::run_frames<Exec>(s, 12, &h);
-  EXPECT_EQ(weft::hash_hex(h), "1736c0db613b5f82");
+  EXPECT_EQ(weft::hash_hex(h), "3ab0b69bd78322f5");
 }
 
 }  // namespace
