@@ -123,9 +123,11 @@ Scene skirt(int res) {
   Scene s;
   s.name = "builtin:skirt";
   const int segments = 4 * res, rings = res;
-  // Thickness at most a quarter of the ring spacing, so a point stays out of reach of its own layer's
-  // neighbouring faces; adjacent layers start 2.8 thicknesses apart (radially), outside contact reach.
-  const real thickness = std::min(0.003, 0.25 * 0.45 / rings);
+  // Self contacts reach 2.5 thicknesses (1.25 x the two sides'), so the thickness stays below 0.3 of the
+  // smallest triangle height (at the waist) and a point never reaches its own layer's next faces; adjacent
+  // layers start 2.8 thicknesses apart (radially), outside contact reach.
+  const real ring = 0.45 / rings, waist = 2 * pi * 0.16 / segments;
+  const real thickness = std::min(0.003, 0.3 * ring * waist / std::sqrt(ring * ring + waist * waist));
   for (int l = 0; l < 5; ++l) {
     const real gap = 2.8 * thickness * l;
     const Mesh t = tube(0.55, 1.0, rings, segments, 0.30 + gap, 0.16 + gap);
