@@ -57,7 +57,7 @@ def main():
     labels = [b if t is None else f"{b} {t}t" for b, t in configs]
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    log = open(out / "log.txt", "w")
+    log = open(out / "log.txt", "w", buffering=1)
     W.progress(f"weft {info['version']} at {weft}: {len(scenes)} scenes x {len(configs)} configurations "
                f"({', '.join(labels)}), res {a.res}, frames 1-{a.frames}")
     results = []

@@ -115,7 +115,7 @@ def main():
     ap.add_argument("--timeout", type=float, help="seconds per run before it is killed (quick 90, full 3600)")
     ap.add_argument("--ref-timeout", type=float, help="seconds for a reference run (quick 120, full 14400); a scene "
                     "whose reference fails is skipped")
-    ap.add_argument("--diverge-strain", type=float, default=20.0,
+    ap.add_argument("--diverge-strain", type=float, default=5.0,
                     help="kill a run whose max strain passes this (default %(default)s); it is reported as diverged")
     ap.add_argument("--keep-caches", action="store_true", help="keep every run's cache under OUT/caches")
     a = ap.parse_args()
@@ -146,7 +146,7 @@ def main():
     (out / "reference").mkdir(exist_ok=True)
     cache_dir = out / "caches"
     cache_dir.mkdir(exist_ok=True)
-    log = open(out / "log.txt", "w")
+    log = open(out / "log.txt", "w", buffering=1)
     ref_backend = W.fastest(backends)
     max_cost = max(s * it for _, _, s, it, _, _ in grid)
     max_passes = max(s * cp for _, _, s, _, cp, _ in grid)

@@ -263,7 +263,7 @@ def main():
     ap.add_argument("--res-scale", type=float, help="resolution = each case's full resolution x this (quick 0.25, full 1)")
     ap.add_argument("--cases", help="comma-separated case names (default: all)")
     ap.add_argument("--timeout", type=float, help="seconds per case before its run is killed (quick 240, full 3600)")
-    ap.add_argument("--diverge-strain", type=float, default=20.0,
+    ap.add_argument("--diverge-strain", type=float, default=5.0,
                     help="kill a run whose max strain passes this (default %(default)s): the case fails")
     ap.add_argument("--intersection-frames", type=int, default=8, help="frames checked for intersections (default 8)")
     ap.add_argument("--keep-caches", action="store_true", help="keep each case's cache in OUT")
@@ -276,7 +276,7 @@ def main():
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     ctx = {"weft": weft, "dir": out, "res_scale": a.res_scale if a.res_scale is not None else preset["res_scale"],
-           "timeout": a.timeout or preset["timeout"], "log": open(out / "log.txt", "w")}
+           "timeout": a.timeout or preset["timeout"], "log": open(out / "log.txt", "w", buffering=1)}
     todo = cases()
     if a.cases:
         names = a.cases.split(",")

@@ -23,6 +23,8 @@ FRAME_LINE = re.compile(r"^frame (\d+)\s+ke (\S+) J\s+rms speed (\S+) m/s\s+max 
 NON_FINITE = re.compile(r"(\d+) points became non-finite at frame (\d+)")
 
 _T0 = time.monotonic()
+# SIGTERM (e.g. from `timeout`) ends a report like Ctrl-C does: through the finally clauses that stop weft.
+signal.signal(signal.SIGTERM, lambda signum, frame: sys.exit(128 + signum))
 
 
 def progress(msg):
@@ -92,6 +94,7 @@ class RunResult:
         self.non_finite_points = 0
         self.non_finite_frame = None
         self.message = ""
+        self.killed = None
 
     @property
     def last_line(self):
@@ -109,7 +112,8 @@ def run_weft(weft, args, backend=None, threads=None, timeout=None, diverge_strai
 
     The run is killed (SIGKILL to its own process group: a frame of an exploding run can take minutes, and
     SIGTERM waits for the frame in progress) when it passes `timeout` seconds or when a frame's max strain
-    exceeds `diverge_strain` or its rms speed `diverge_speed` (m/s). A cache written with -o stays readable up to the last complete frame."""
+    exceeds `diverge_strain` or its rms speed `diverge_speed` (m/s). A cache written with -o stays readable up
+    to the last complete frame."""
     cmd = [weft] + global_args(backend, threads) + [str(a) for a in args]
     res = RunResult()
     if log:
@@ -129,6 +133,37 @@ def run_weft(weft, args, backend=None, threads=None, timeout=None, diverge_strai
                 threading.Thread(target=pump, args=(proc.stderr, "err"), daemon=True)]
     for t in threads_:
         t.start()
+    try:
+        _watch(proc, q, res, t0, timeout, diverge_strain, diverge_speed, log)
+    finally:  # the script is stopped (Ctrl-C, SIGTERM): its weft run stops with it
+        if proc.poll() is None:
+            _kill(proc)
+    proc.wait()
+    res.rc = proc.returncode
+    res.wall = time.monotonic() - t0
+    killed = res.killed
+    if log:
+        log.write(f"  (exit {res.rc}, {res.wall:.1f} s{', killed: ' + killed if killed else ''})\n")
+        log.flush()
+    err = "\n".join(res.stderr)
+    m = NON_FINITE.search(err)
+    if m:
+        res.non_finite_points, res.non_finite_frame = int(m[1]), int(m[2])
+    if killed:
+        res.status = killed
+        if killed == "timeout":
+            res.message = f"killed after {timeout:g} s"
+    elif m or res.rc == 3:
+        res.status = "non-finite"
+        res.message = err.strip().splitlines()[-1] if err.strip() else "non-finite points"
+    elif res.rc != 0:
+        res.status = "error"
+        res.message = err.strip().splitlines()[-1] if err.strip() else f"exit {res.rc}"
+    return res
+
+
+def _watch(proc, q, res, t0, timeout, diverge_strain, diverge_speed, log):
+    """Reads a run's output lines until both streams close, killing it on time-out or divergence."""
     open_streams, killed = 2, None
     while open_streams:
         left = None if timeout is None else timeout - (time.monotonic() - t0)
@@ -162,27 +197,7 @@ def run_weft(weft, args, backend=None, threads=None, timeout=None, diverge_strai
             if why and killed is None:
                 killed, res.message = "diverged", why
                 _kill(proc)
-    proc.wait()
-    res.rc = proc.returncode
-    res.wall = time.monotonic() - t0
-    if log:
-        log.write(f"  (exit {res.rc}, {res.wall:.1f} s{', killed: ' + killed if killed else ''})\n")
-        log.flush()
-    err = "\n".join(res.stderr)
-    m = NON_FINITE.search(err)
-    if m:
-        res.non_finite_points, res.non_finite_frame = int(m[1]), int(m[2])
-    if killed:
-        res.status = killed
-        if killed == "timeout":
-            res.message = f"killed after {timeout:g} s"
-    elif m or res.rc == 3:
-        res.status = "non-finite"
-        res.message = err.strip().splitlines()[-1] if err.strip() else "non-finite points"
-    elif res.rc != 0:
-        res.status = "error"
-        res.message = err.strip().splitlines()[-1] if err.strip() else f"exit {res.rc}"
-    return res
+    res.killed = killed
 
 
 def _kill(proc):
