@@ -1,13 +1,16 @@
 // `weft check-intersections <scene> [--frame F]`: discrete triangle-triangle intersections of the cloth,
-// after simulating a scene up to frame F (default: its initial state). Given an OBJ mesh instead, counts the
-// intersections of that static mesh (another simulator's output, say) the same way. Last line:
-// `intersections <N>`.
+// after simulating a scene up to frame F (default: its initial state). Given a cache, counts them at a stored
+// frame (default: the last; --all-frames: every one) without simulating; given an OBJ mesh (another
+// simulator's output, say), in that static mesh. Last line: `intersections <N>`.
 #include "apps/cli.hpp"
 #include "backends/simulation.hpp"
 #include "constraints/vellum_cloth.hpp"
+#include "io/cache_file.hpp"
+#include "io/hdf5_util.hpp"
 #include "io/obj.hpp"
 #include "io/scene_source.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace weft::cli {
@@ -17,31 +20,74 @@ struct Options {
   std::string scene;
   int res = 0;
   int frame = -1;
+  bool all_frames = false;
 };
 
 bool is_obj(const std::string& path) {
   return path.size() > 4 && path.compare(path.size() - 4, 4, ".obj") == 0;
 }
 
-// The mesh as a one-piece cloth scene that is never stepped: only its triangles and positions matter.
-Scene static_mesh_scene(const std::string& path) {
-  const io::TriMesh m = io::read_obj(path);
-  if (m.triangles.empty()) throw InputError(path + ": no triangles");
+bool is_cache(const std::string& path) {
+  if (path.size() <= 3 || path.compare(path.size() - 3, 3, ".h5") != 0) return false;
+  return io::h5::format_of(io::h5::File::open(path)) == io::kCacheFormat;
+}
+
+// A mesh as a one-piece cloth scene that is never stepped: only its triangles and positions matter.
+Scene static_mesh_scene(const std::string& name, const std::vector<Vec3>& x, const std::vector<std::array<int, 3>>& tris) {
+  if (tris.empty()) throw InputError(name + ": no triangles");
   Scene s;
-  s.name = path;
-  add_cloth_piece(s, m.positions, m.triangles, ClothMaterial{});
+  s.name = name;
+  add_cloth_piece(s, x, tris, ClothMaterial{});
   s.settings.self_collision = false;
   return s;
+}
+
+long mesh_intersections(Backend b, const std::string& name, const std::vector<Vec3>& x,
+                        const std::vector<std::array<int, 3>>& tris) {
+  return make_simulation(b, static_mesh_scene(name, x, tris))->intersections();
+}
+
+// Frames of a cache: the one asked for (default: the last), or all of them with a line each and, last, the
+// largest count.
+int check_cache(Backend b, const Options& o) {
+  const io::CacheReader c(o.scene);
+  if (o.res > 0) throw Error("--res applies to built-in scenes, not to a cache", 2);
+  if (c.frame_count() == 0) throw InputError(o.scene + ": the cache holds no frames");
+  const std::vector<int>& frames = c.frames();
+  const auto& tris = c.header().triangles;
+  if (o.all_frames) {
+    if (o.frame >= 0) throw Error("--frame and --all-frames exclude each other", 2);
+    long worst = 0;
+    for (int k = 0; k < c.frame_count(); ++k) {
+      const long n = mesh_intersections(b, o.scene, c.positions(k), tris);
+      std::printf("frame %d  intersections %ld\n", frames[k], n);
+      worst = std::max(worst, n);
+    }
+    std::printf("intersections %ld\n", worst);
+    return 0;
+  }
+  int k = c.frame_count() - 1;
+  if (o.frame >= 0) {
+    k = int(std::find(frames.begin(), frames.end(), o.frame) - frames.begin());
+    if (k == c.frame_count())
+      throw Error(o.scene + ": frame " + std::to_string(o.frame) + " is not in the cache (frames " +
+                      std::to_string(frames.front()) + "-" + std::to_string(frames.back()) + ")", 2);
+  }
+  std::printf("frame %d\nintersections %ld\n", frames[k], mesh_intersections(b, o.scene, c.positions(k), tris));
+  return 0;
 }
 
 int check(const GlobalOptions& g, const Options& o) {
   const Backend b = resolve_backend(g);
   Runtime rt(g.threads);
   if (is_obj(o.scene)) {
-    if (o.frame >= 0 || o.res > 0) throw Error("--frame and --res apply to scenes, not to an OBJ mesh", 2);
-    std::printf("intersections %ld\n", make_simulation(b, static_mesh_scene(o.scene))->intersections());
+    if (o.frame >= 0 || o.res > 0 || o.all_frames) throw Error("--frame, --all-frames and --res apply to scenes, not to an OBJ mesh", 2);
+    const io::TriMesh m = io::read_obj(o.scene);
+    std::printf("intersections %ld\n", mesh_intersections(b, o.scene, m.positions, m.triangles));
     return 0;
   }
+  if (is_cache(o.scene)) return check_cache(b, o);
+  if (o.all_frames) throw Error("--all-frames applies to a cache", 2);
   Scene scene = io::load_scene(o.scene, io::BuiltinOptions{o.res});
   if (o.frame >= 0) scene.settings.frame_end = std::max(scene.settings.frame_end, o.frame);
   auto sim = make_simulation(b, scene);
@@ -58,10 +104,14 @@ int check(const GlobalOptions& g, const Options& o) {
 
 void add_check(CLI::App& app, const GlobalOptions& g, Action& action) {
   auto o = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("check-intersections", "count intersecting cloth triangle pairs at a frame, or of an OBJ mesh");
-  cmd->add_option("scene", o->scene, "builtin:NAME, scene.json, scene.h5, or mesh.obj (a static mesh)")->required();
+  auto* cmd = app.add_subcommand("check-intersections",
+                                 "count intersecting cloth triangle pairs at a frame of a scene or a cache, or of an OBJ mesh");
+  cmd->add_option("scene", o->scene, "builtin:NAME, scene.json, scene.h5, cache.h5 (weft run -o), or mesh.obj")->required();
   cmd->add_option("--res", o->res, "resolution of a built-in scene")->check(CLI::PositiveNumber);
-  cmd->add_option("--frame", o->frame, "simulate up to this frame first (default: the initial state)");
+  cmd->add_option("--frame", o->frame,
+                  "a scene: simulate up to this frame first (default: the initial state); a cache: this stored frame "
+                  "(default: the last)");
+  cmd->add_flag("--all-frames", o->all_frames, "a cache: every stored frame, one line each; the last line is the largest count");
   cmd->callback([&g, &action, o] { action = [&g, o] { return check(g, *o); }; });
 }
 

@@ -30,7 +30,8 @@ void print_settings(const SolverSettings& s) {
             << " dynamic " << s.dynamic_friction << ", layer shock " << s.layer_shock << ", parallel edges "
             << s.parallel_edge_degrees << " degrees\n"
             << "  impact zone smoothing " << (s.impact_zone_smoothing ? "on" : "off") << " (epsilon "
-            << s.impact_zone_epsilon << ", " << s.impact_zone_sweeps << " sweeps)\n";
+            << s.impact_zone_epsilon << ", " << s.impact_zone_sweeps << " sweeps), crossing fail-safe "
+            << (s.collision_failsafe ? "on" : "off") << "\n";
 }
 
 void print_scene(const std::string& path) {

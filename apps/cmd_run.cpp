@@ -57,6 +57,8 @@ std::string resume_command(const RunOptions& o) {
   opt("--geo-sequence", o.geo_dir);
   if (o.hash) c += " --hash";
   if (o.clean) c += " --clean";
+  if (o.no_impact_zones) c += " --no-impact-zones";
+  if (o.no_failsafe) c += " --no-failsafe";
   return c + " -o " + o.output + " --resume";
 }
 
@@ -111,8 +113,9 @@ class Progress {
     ++done_;
     if (quiet_) return;
     if (!tty_) {
-      std::printf("frame %d  ke %.3e J  rms speed %.3e m/s  max strain %.3e  %.2f ms\n", fs.frame, fs.kinetic_energy,
-                  fs.rms_speed, fs.max_strain, 1e3 * fs.seconds);
+      std::printf("frame %d  ke %.3e J  rms speed %.3e m/s  max strain %.3e  contacts %ld  moved back %ld  %.2f ms\n",
+                  fs.frame, fs.kinetic_energy, fs.rms_speed, fs.max_strain, fs.contacts, fs.failsafe_points,
+                  1e3 * fs.seconds);
       std::fflush(stdout);  // a log being followed shows each frame as it is done
       return;
     }
@@ -149,6 +152,8 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   if (o.iterations >= 0) st.iterations = o.iterations;
   if (o.collision_passes >= 0) st.collision_passes = o.collision_passes;
   if (o.smoothing >= 0) st.smoothing_iterations = o.smoothing;
+  if (o.no_impact_zones) st.impact_zone_smoothing = false;
+  if (o.no_failsafe) st.collision_failsafe = false;
   if (o.clean) {  // the solvability check (docs/solvability.md) replaces the colliders by cleaned ones
     const BodyCleaning c = clean_body(b, scene);
     scene.colliders = c.colliders;
@@ -245,6 +250,8 @@ void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_option("--iterations", o->iterations, "constraint iterations per substep")->check(CLI::NonNegativeNumber);
   cmd->add_option("--collision-passes", o->collision_passes, "collision passes per substep")->check(CLI::NonNegativeNumber);
   cmd->add_option("--smoothing", o->smoothing, "Jacobi smoothing iterations per substep")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--no-impact-zones", o->no_impact_zones, "switch off impact-zone smoothing of velocities (paper 2.3)");
+  cmd->add_flag("--no-failsafe", o->no_failsafe, "switch off the crossing fail-safe (docs/collisions.md)");
   cmd->add_flag("--hash", o->hash, "print 'hash <16 hex digits>' of every frame's positions as the last line");
   cmd->add_flag("--quiet", o->quiet, "no per-frame lines");
   cmd->add_option("-o,--output", o->output, "HDF5 cache written frame by frame (readable while the run goes on)");

@@ -23,7 +23,12 @@ class SimulationOn final : public Simulation {
       for (int k = 0; k < 3; ++k) m(t, k) = scene.triangles[t][k];
     Kokkos::deep_copy(tris_, m);
   }
-  FrameStats step_frame() override { return with_collision_stats(solver_.step_frame()); }
+  FrameStats step_frame() override {
+    const long moved_back = collisions_ ? collisions_->stats().failsafe_points : 0;
+    FrameStats fs = with_collision_stats(solver_.step_frame());
+    if (collisions_) fs.failsafe_points = collisions_->stats().failsafe_points - moved_back;
+    return fs;
+  }
   FrameStats measure() const override { return with_collision_stats(solver_.measure()); }
   int frame() const override { return solver_.frame(); }
   uint64_t hash_positions() const override { return solver_.hash_positions(); }

@@ -5,6 +5,7 @@
 #pragma once
 #include "collision/aabb.hpp"
 #include "collision/contact_colouring.hpp"
+#include "collision/crossing_failsafe.hpp"
 #include "collision/impact_zone.hpp"
 #include "collision/lbvh.hpp"
 #include "collision/narrow_phase.hpp"
@@ -66,6 +67,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   struct Stats {
     long contacts = 0, colours = 0;
     ImpactZoneStats zones;
+    long failsafe_points = 0;  // moved back by the fail-safe since the handler was made
   };
 
   explicit CollisionHandler(const Scene& s) : cloth_bvh_(Exec()), collider_bvh_(Exec()) {
@@ -79,6 +81,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     smoothing_ = st.impact_zone_smoothing;
     epsilon_ = st.impact_zone_epsilon;
     sweeps_ = st.impact_zone_sweeps;
+    failsafe_ = st.collision_failsafe;
     // Cloth side.
     cloth_tris_ = upload_tris(s.triangles);
     cloth_rmask_ = upload(representative_features(s.triangles, int(s.points.size())), "weft::cloth_rmask");
@@ -142,6 +145,22 @@ class CollisionHandler final : public CollisionStage<Exec> {
     for (size_t k = 0; k + 1 < offsets_.size(); ++k)
       Kokkos::parallel_for("weft::project_contacts", Kokkos::RangePolicy<Exec>(s.exec, offsets_[k], offsets_[k + 1]),
                            ProjectContacts<Mem>{c, x, xs, w, cx, cxs});
+  }
+
+  // The crossing fail-safe over fresh candidate pairs (boxes from x_start to the final x).
+  void finish_positions(const SolverState<Exec>& s, real) override {
+    if (!failsafe_) return;
+    update_boxes(s);
+    cloth_bvh_.refit(cloth_boxes_);
+    long nself = 0, ncollider = 0;
+    if (self_) nself = cloth_bvh_.query_self(KeepAllPairs{}, pairs_);
+    if (collider_boxes_.extent(0) > 0) {
+      collider_bvh_.refit(collider_boxes_);
+      ncollider = collider_bvh_.query(View<const Aabb*>(cloth_boxes_), KeepAllPairs{}, collider_pairs_);
+    }
+    if (nself + ncollider == 0) return;
+    stats_.failsafe_points += failsafe_run_.run(s.exec, cloth_side(s), collider_side(s), pairs_, nself, collider_pairs_,
+                                             ncollider, s.x, s.x_start, s.w).points;
   }
 
   void end_substep(const SolverState<Exec>& s, real) override {
@@ -243,7 +262,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
 
  private:
   NarrowSettings ns_;
-  bool self_ = true, smoothing_ = true;
+  bool self_ = true, smoothing_ = true, failsafe_ = true;
   real epsilon_ = 0.1;
   int sweeps_ = 4;
   long ncontacts_ = 0;
@@ -254,13 +273,14 @@ class CollisionHandler final : public CollisionStage<Exec> {
   real collider_th_ = 0, collider_fr_ = 1;
   View<Aabb*> cloth_boxes_, collider_boxes_;
   Lbvh<Exec> cloth_bvh_, collider_bvh_;
-  View<IndexPair*> pairs_{"weft::pairs", 0};
+  View<IndexPair*> pairs_{"weft::pairs", 0}, collider_pairs_{"weft::collider_pairs", 0};
   View<uint32_t*> masks_{"weft::masks", 0};
   View<long*> counts_{"weft::counts", 0};
   View<Contact*> contacts_{"weft::contacts", 0};
   std::vector<long> offsets_{0};
   ContactColouring<Exec> colouring_;
   ImpactZones<Exec> zones_;
+  CrossingFailsafe<Exec> failsafe_run_;
   Stats stats_;
 };
 

@@ -84,7 +84,9 @@ KOKKOS_INLINE_FUNCTION bool vf_hit(const SideMesh<Mem>& P, int p, const SideMesh
   real u, v, w;
   const real d2 = point_triangle_distance2(P.x(p), F.x(a), F.x(b), F.x(c), u, v, w);
   const real lim = s.detect_scale * r;
-  if (d2 < lim * lim) return owns_closest_feature(F, f, u, v, w);
+  // A face that does not own the closest feature still needs a contact if the point crosses it (a fold
+  // at that edge or corner): the CCD below decides.
+  if (d2 < lim * lim && owns_closest_feature(F, f, u, v, w)) return true;
   // Linear motion moves the point-triangle vector by at most the largest relative displacement of p
   // against a corner, so a pair that starts farther apart than that plus the CCD separation cannot touch.
   const Vec3 dp = P.x(p) - P.xs(p);

@@ -30,6 +30,7 @@ struct SolverSettings {
   bool impact_zone_smoothing = true;     // paper 2.3: Laplacian smoothing of velocities in unresolved contacts
   real impact_zone_epsilon = 0.1;        // contacts with C < -epsilon * thickness are smoothed
   int impact_zone_sweeps = 4;
+  bool collision_failsafe = true;        // move back points whose motion would cross cloth (collision/crossing_failsafe.hpp)
   bool profile = false;                  // time each stage (fences between stages)
 };
 

@@ -54,6 +54,7 @@ class Solver {
     fs.seconds_collision_passes = prof_.seconds_collision_passes;
     fs.seconds_contacts = prof_.seconds_contacts;
     fs.seconds_smoothing = prof_.seconds_smoothing;
+    fs.seconds_failsafe = prof_.seconds_failsafe;
     fs.collision_passes = prof_.collision_passes;
     fs.seconds = solve;
     return fs;
@@ -146,6 +147,7 @@ class Solver {
     timed(prof_.seconds_constraints, [&] {
       for (int it = 0; it < st_.smoothing_iterations; ++it) jacobi_sweep(h);
     });
+    if (collision_) timed(prof_.seconds_failsafe, [&] { collision_->finish_positions(state_, h); });
     Kokkos::parallel_for("weft::velocity", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
                          kernels::UpdateVelocity<Mem>{state_.x, state_.x_start, state_.v, h});
     if (collision_) timed(prof_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });

@@ -25,6 +25,7 @@ class CollisionStage {
   virtual void begin_substep(const SolverState<Exec>& s, real h) = 0;
   virtual void pass(const SolverState<Exec>& s, real h) = 0;     // detect contacts (a collision pass)
   virtual void project(const SolverState<Exec>& s, real h) = 0;  // one Gauss-Seidel sweep over contacts
+  virtual void finish_positions(const SolverState<Exec>& s, real h) = 0;  // after the last iteration
   virtual void end_substep(const SolverState<Exec>& s, real h) = 0;  // after v = (x - x_start) / h
 };
 

@@ -19,7 +19,7 @@ using h5::Handle;
 using Dims = std::vector<hsize_t>;
 
 // The per-frame statistics table: one compound row per frame, fields named as in FrameStats.
-static_assert(sizeof(FrameStats) == 112, "FrameStats changed: update kStatsFields");
+static_assert(sizeof(FrameStats) == 128, "FrameStats changed: update kStatsFields");
 enum class Kind { I32, I64, F64 };
 struct StatsField {
   const char* name;
@@ -35,11 +35,13 @@ const StatsField kStatsFields[] = {
     {"non_finite", offsetof(FrameStats, non_finite), Kind::I64},
     {"contacts", offsetof(FrameStats, contacts), Kind::I64},
     {"impact_zone_points", offsetof(FrameStats, impact_zone_points), Kind::I64},
+    {"failsafe_points", offsetof(FrameStats, failsafe_points), Kind::I64},
     {"seconds", offsetof(FrameStats, seconds), Kind::F64},
     {"seconds_constraints", offsetof(FrameStats, seconds_constraints), Kind::F64},
     {"seconds_collision_passes", offsetof(FrameStats, seconds_collision_passes), Kind::F64},
     {"seconds_contacts", offsetof(FrameStats, seconds_contacts), Kind::F64},
     {"seconds_smoothing", offsetof(FrameStats, seconds_smoothing), Kind::F64},
+    {"seconds_failsafe", offsetof(FrameStats, seconds_failsafe), Kind::F64},
     {"collision_passes", offsetof(FrameStats, collision_passes), Kind::I64},
 };
 

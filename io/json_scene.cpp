@@ -151,7 +151,7 @@ std::string resolve(const std::string& json_path, const std::string& file) {
 
 void read_settings(const Node& n, Scene& s) {
   n.object({"fps", "frames", "substeps", "iterations", "collision_passes", "smoothing", "gravity", "wind", "damping",
-            "impact_zone_smoothing", "collisions"});
+            "impact_zone_smoothing", "collision_failsafe", "collisions"});
   SolverSettings& st = s.settings;
   st.fps = n.number("fps", st.fps, Range::Positive);
   if (n.has("frames")) {
@@ -168,6 +168,7 @@ void read_settings(const Node& n, Scene& s) {
   st.wind = n.vec3("wind", st.wind);
   st.velocity_damping = n.number("damping", st.velocity_damping, Range::NonNegative);
   if (n.has("impact_zone_smoothing")) st.impact_zone_smoothing = n["impact_zone_smoothing"].boolean();
+  if (n.has("collision_failsafe")) st.collision_failsafe = n["collision_failsafe"].boolean();
   if (n.has("collisions")) s.needs_collisions = n["collisions"].boolean();
 }
 

@@ -41,6 +41,7 @@ const std::pair<const char*, int SolverSettings::*> kIntSettings[] = {
 const std::pair<const char*, bool SolverSettings::*> kBoolSettings[] = {
     {"self_collision", &SolverSettings::self_collision},
     {"impact_zone_smoothing", &SolverSettings::impact_zone_smoothing},
+    {"collision_failsafe", &SolverSettings::collision_failsafe},
     {"profile", &SolverSettings::profile},
 };
 const std::pair<const char*, Vec3 SolverSettings::*> kVecSettings[] = {
@@ -335,7 +336,11 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
   SolverSettings s;
   for (const auto& [name, m] : kRealSettings) s.*m = h5::read_attribute<double>(f, group, name);
   for (const auto& [name, m] : kIntSettings) s.*m = h5::read_attribute<int>(f, group, name);
-  for (const auto& [name, m] : kBoolSettings) s.*m = h5::read_attribute<int>(f, group, name) != 0;
+  for (const auto& [name, m] : kBoolSettings) {
+    // Added after the first files of this format version were written: absent means the default.
+    if (std::strcmp(name, "collision_failsafe") == 0 && !h5::has_attribute(f, group, name)) continue;
+    s.*m = h5::read_attribute<int>(f, group, name) != 0;
+  }
   for (const auto& [name, m] : kVecSettings) {
     const std::vector<double> v = h5::read_vector_attribute(f, group, name, 3);
     s.*m = {v[0], v[1], v[2]};
