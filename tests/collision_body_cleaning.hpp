@@ -185,6 +185,9 @@ TEST(WEFT_TEST_SUITE, cleaned_body_squeezes_the_sleeve_less) {
   s.settings.substeps = 4;
   s.settings.iterations = 10;
   s.settings.collision_passes = 1;
+  // What the contacts make of the room cleaning gives: the fail-safe, which holds crossing points back in
+  // their squeezed spots, would blur that.
+  s.settings.collision_failsafe = false;
   const long before = squeezed_points<Exec>(s);
   s.colliders = weft::clean_body_on<Exec>(s, {}).colliders;
   const long after = squeezed_points<Exec>(s);
