@@ -3,9 +3,9 @@
 #include "apps/cli.hpp"
 #include "backends/simulation.hpp"
 #include "io/scene_source.hpp"
+#include "io/trimesh.hpp"
 
 #include <cstdio>
-#include <fstream>
 
 namespace weft::cli {
 namespace {
@@ -20,7 +20,7 @@ struct Schedule { const char* name; int iterations, passes, substeps; };
 struct Result {
   std::string schedule;
   int iterations, passes, substeps;
-  double ms_frame = 0, ms_constraints = 0, ms_pass = 0, ms_contacts = 0, ms_smoothing = 0;
+  double ms_frame = 0, ms_constraints = 0, ms_pass = 0, ms_contacts = 0, ms_smoothing = 0, ms_failsafe = 0;
   double contacts = 0;
   long memory = -1;
 };
@@ -41,6 +41,7 @@ Result bench_one(Backend b, Scene scene, const Options& o, const Schedule& sc) {
     r.ms_constraints += 1e3 * fs.seconds_constraints / o.frames;
     r.ms_contacts += 1e3 * fs.seconds_contacts / o.frames;
     r.ms_smoothing += 1e3 * fs.seconds_smoothing / o.frames;
+    r.ms_failsafe += 1e3 * fs.seconds_failsafe / o.frames;
     r.ms_pass += 1e3 * fs.seconds_collision_passes;
     passes += fs.collision_passes;
     r.contacts += double(fs.contacts) / o.frames;
@@ -61,18 +62,17 @@ int bench(const GlobalOptions& g, const Options& o) {
   else throw Error("--schedules is 'paper' or 'current'", 2);
   std::printf("%s: %zu points, %zu triangles, backend %s, %d frames after %d warm-up (stage times fenced)\n",
               scene.name.c_str(), scene.points.size(), scene.triangles.size(), backend_name(b), o.frames, o.warmup);
-  std::printf("%-9s %5s %5s %5s %10s %12s %13s %10s %10s %10s %9s\n", "schedule", "iter", "pass", "sub", "ms/frame",
-              "constraints", "ms/col.pass", "contacts", "smoothing", "#contacts", "mem MiB");
+  std::printf("%-9s %5s %5s %5s %10s %12s %13s %10s %10s %10s %10s %9s\n", "schedule", "iter", "pass", "sub",
+              "ms/frame", "constraints", "ms/col.pass", "contacts", "smoothing", "fail-safe", "#contacts", "mem MiB");
   std::vector<Result> results;
   for (const Schedule& sc : schedules) {
     const Result r = bench_one(b, scene, o, sc);
-    std::printf("%-9s %5d %5d %5d %10.2f %12.2f %13.3f %10.2f %10.2f %10.0f %9.1f\n", r.schedule.c_str(), r.iterations,
-                r.passes, r.substeps, r.ms_frame, r.ms_constraints, r.ms_pass, r.ms_contacts, r.ms_smoothing, r.contacts,
-                r.memory >= 0 ? r.memory / 1048576.0 : -1.0);
+    std::printf("%-9s %5d %5d %5d %10.2f %12.2f %13.3f %10.2f %10.2f %10.2f %10.0f %9.1f\n", r.schedule.c_str(),
+                r.iterations, r.passes, r.substeps, r.ms_frame, r.ms_constraints, r.ms_pass, r.ms_contacts,
+                r.ms_smoothing, r.ms_failsafe, r.contacts, r.memory >= 0 ? r.memory / 1048576.0 : -1.0);
     results.push_back(r);
   }
-  if (!o.json.empty()) {
-    std::ofstream out(o.json);
+  if (!o.json.empty()) io::write_file_atomically(o.json, [&](std::ostream& out) {
     out << "{\"scene\": \"" << scene.name << "\", \"triangles\": " << scene.triangles.size() << ", \"backend\": \""
         << backend_name(b) << "\", \"results\": [";
     for (size_t i = 0; i < results.size(); ++i) {
@@ -81,10 +81,11 @@ int bench(const GlobalOptions& g, const Options& o) {
           << ", \"collision_passes\": " << r.passes << ", \"substeps\": " << r.substeps << ", \"ms_per_frame\": " << r.ms_frame
           << ", \"ms_constraints\": " << r.ms_constraints << ", \"ms_per_collision_pass\": " << r.ms_pass
           << ", \"ms_contacts\": " << r.ms_contacts << ", \"ms_smoothing\": " << r.ms_smoothing
-          << ", \"contacts\": " << r.contacts << ", \"memory_bytes\": " << r.memory << "}";
+          << ", \"ms_failsafe\": " << r.ms_failsafe << ", \"contacts\": " << r.contacts
+          << ", \"memory_bytes\": " << r.memory << "}";
     }
     out << "]}\n";
-  }
+  });
   return 0;
 }
 
