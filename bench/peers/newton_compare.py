@@ -20,8 +20,8 @@ How weft's scenes (io/builtin_scenes.cpp, constraints/vellum_cloth.hpp, core/sce
              steps), gravity (0, -9.81, 0), no air drag, no velocity damping.
   mass       area density 0.1 kg/m^2 (weft's ClothMaterial default; Newton: add_cloth_mesh density).
   timing     ms per frame = mean over the frames after the first (the first, warm-up, frame includes
-             Newton's kernel compilation and CUDA-graph capture; weft: `bench --warmup 1`), so both time the
-             same frames 2..end. Newton: device synchronized before and after each frame; one CUDA graph per
+             Newton's kernel compilation and CUDA-graph capture; weft: the per-frame times `weft run -o`
+             prints), so both time the same frames 2..end. Newton: device synchronized before and after each frame; one CUDA graph per
              frame (as Newton's own examples do) when the device is CUDA and the substeps are even.
   contact    self-contact distance: weft keeps cloth surfaces apart by the sum of the two thicknesses
              (2 x 0.005 m hanging-sheet, 2 x 0.004 m twist); Newton's particle_self_contact_margin is set to
@@ -45,8 +45,8 @@ Differences that remain (stated in the output too):
   - weft computes in double precision, bitwise reproducibly; Newton (Warp) in single precision.
   - Newton keeps at most 64 vertex-triangle and 128 edge-edge contact candidates per element and drops the
     rest silently (twice its defaults, as its cloth_twist example); weft's contact lists are not capped.
-  - `weft bench` fences between its stages to time them (a little slower than `weft run`); Newton replays
-    one CUDA graph per frame with no fences inside.
+  - weft's times are `weft run` frames writing an HDF5 cache (the write happens after the frame's timer);
+    Newton replays one CUDA graph per frame with no fences inside.
 
 Usage: see bench/peers/README.md. CPU smoke test: newton_compare.py --quick --device cpu --weft build/openmp/bin/weft
 """
@@ -245,21 +245,26 @@ def last_count(output):
 
 
 def run_weft(args, scene, frames, out_dir):
-    js = os.path.join(out_dir, "weft_%s_%d.json" % (scene.name, scene.res))
-    sh(weft_cmd(args, "bench", "builtin:" + scene.name, "--res", scene.res, "--frames", max(1, frames - 1),
-                "--warmup", min(1, frames - 1), "--json", js))
-    with open(js) as f:
-        b = json.load(f)
-    r = b["results"][0]
-    out = sh(weft_cmd(args, "check-intersections", "builtin:" + scene.name, "--res", scene.res, "--frame", 1 + frames))
-    per_frame = [int(v) for v in re.findall(r"^frame \d+ .*intersections (\d+)$", out, re.M)]
+    """One `weft run` writing a cache (ms per frame from its per-frame lines, the first stepped frame being
+    warm-up), then `weft check-intersections CACHE --all-frames` on that cache: the scene is simulated once."""
+    cache = os.path.join(out_dir, "weft_%s_%d.h5" % (scene.name, scene.res))
+    out = sh(weft_cmd(args, "run", "builtin:" + scene.name, "--res", scene.res, "--frames", "1-%d" % (1 + frames),
+                      "-o", cache))
+    ms = [float(v) for v in re.findall(r"^frame \d+ .* ([0-9.]+) ms$", out, re.M)]
+    head = re.search(r"^\S+: \d+ points, (\d+) triangles", out, re.M)
+    timed = ms[1:] if len(ms) > 1 else ms
+    chk = sh(weft_cmd(args, "check-intersections", cache, "--all-frames"))
+    per_frame = [int(v) for v in re.findall(r"^frame \d+ .*intersections (\d+)$", chk, re.M)]
+    settings = sh(weft_cmd(args, "info", cache))
     return {
-        "ms_per_frame": r["ms_per_frame"], "frames_timed": max(1, frames - 1), "intersections": last_count(out),
-        "max_intersections_any_frame": max(per_frame) if per_frame else None, "weft_triangles": b["triangles"],
-        "backend": b["backend"],
-        "settings": {"substeps": r["substeps"], "iterations": r["iterations"], "collision_passes": r["collision_passes"],
+        "ms_per_frame": sum(timed) / len(timed) if timed else None, "frames_timed": len(timed),
+        "intersections": per_frame[-1] if per_frame else last_count(chk),
+        "max_intersections_any_frame": max(per_frame) if per_frame else None,
+        "weft_triangles": int(head[1]) if head else None, "backend": args.weft_backend,
+        "settings": {"substeps": SUBSTEPS, "iterations": WEFT_ITERATIONS, "collision_passes": 2 if scene.name != "hanging-sheet" else 0,
                      "fps": FPS, "density": DENSITY, "stretch": "distance 1e10 N/m", "bend": "1e-3 N m/rad",
-                     "self_collision": scene.name != "hanging-sheet", "thickness": scene.thickness, "friction": FRICTION},
+                     "self_collision": scene.name != "hanging-sheet", "thickness": scene.thickness, "friction": FRICTION,
+                     "cache_info": settings.strip().splitlines()[:12]},
     }
 
 
