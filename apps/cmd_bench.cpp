@@ -11,7 +11,7 @@ namespace weft::cli {
 namespace {
 
 struct Options {
-  std::string scene, schedules = "current", json;
+  std::string scene, schedules = "current", json, self_collision;
   int res = 0, frames = 10, warmup = 2;
 };
 
@@ -21,7 +21,7 @@ struct Result {
   std::string schedule;
   int iterations, passes, substeps;
   double ms_frame = 0, ms_constraints = 0, ms_pass = 0, ms_contacts = 0, ms_smoothing = 0, ms_failsafe = 0;
-  double contacts = 0;
+  double contacts = 0, failsafe_rounds = 0;  // means per frame
   long memory = -1;
 };
 
@@ -45,6 +45,7 @@ Result bench_one(Backend b, Scene scene, const Options& o, const Schedule& sc) {
     r.ms_pass += 1e3 * fs.seconds_collision_passes;
     passes += fs.collision_passes;
     r.contacts += double(fs.contacts) / o.frames;
+    r.failsafe_rounds += double(fs.failsafe_rounds) / o.frames;
   }
   r.ms_pass = passes > 0 ? r.ms_pass / passes : 0;
   const long mem1 = device_memory_used_bytes();
@@ -55,21 +56,23 @@ Result bench_one(Backend b, Scene scene, const Options& o, const Schedule& sc) {
 int bench(const GlobalOptions& g, const Options& o) {
   const Backend b = resolve_backend(g);
   Runtime rt(g.threads);
-  const Scene scene = io::load_scene(o.scene, io::BuiltinOptions{o.res});
+  Scene scene = io::load_scene(o.scene, io::BuiltinOptions{o.res});
+  if (!o.self_collision.empty()) scene.settings.self_collision = o.self_collision == "on";
   std::vector<Schedule> schedules;
   if (o.schedules == "paper") schedules = {{"paper-1", 200, 20, 1}, {"paper-2", 20, 2, 10}, {"paper-3", 10, 1, 20}};
   else if (o.schedules == "current") schedules = {{"scene", 0, 0, 0}};
   else throw Error("--schedules is 'paper' or 'current'", 2);
   std::printf("%s: %zu points, %zu triangles, backend %s, %d frames after %d warm-up (stage times fenced)\n",
               scene.name.c_str(), scene.points.size(), scene.triangles.size(), backend_name(b), o.frames, o.warmup);
-  std::printf("%-9s %5s %5s %5s %10s %12s %13s %10s %10s %10s %10s %9s\n", "schedule", "iter", "pass", "sub",
-              "ms/frame", "constraints", "ms/col.pass", "contacts", "smoothing", "fail-safe", "#contacts", "mem MiB");
+  std::printf("%-9s %5s %5s %5s %10s %12s %13s %10s %10s %10s %8s %10s %9s\n", "schedule", "iter", "pass", "sub",
+              "ms/frame", "constraints", "ms/col.pass", "contacts", "smoothing", "fail-safe", "rounds", "#contacts",
+              "mem MiB");
   std::vector<Result> results;
   for (const Schedule& sc : schedules) {
     const Result r = bench_one(b, scene, o, sc);
-    std::printf("%-9s %5d %5d %5d %10.2f %12.2f %13.3f %10.2f %10.2f %10.2f %10.0f %9.1f\n", r.schedule.c_str(),
+    std::printf("%-9s %5d %5d %5d %10.2f %12.2f %13.3f %10.2f %10.2f %10.2f %8.1f %10.0f %9.1f\n", r.schedule.c_str(),
                 r.iterations, r.passes, r.substeps, r.ms_frame, r.ms_constraints, r.ms_pass, r.ms_contacts,
-                r.ms_smoothing, r.ms_failsafe, r.contacts, r.memory >= 0 ? r.memory / 1048576.0 : -1.0);
+                r.ms_smoothing, r.ms_failsafe, r.failsafe_rounds, r.contacts, r.memory >= 0 ? r.memory / 1048576.0 : -1.0);
     results.push_back(r);
   }
   if (!o.json.empty()) io::write_file_atomically(o.json, [&](std::ostream& out) {
@@ -81,7 +84,8 @@ int bench(const GlobalOptions& g, const Options& o) {
           << ", \"collision_passes\": " << r.passes << ", \"substeps\": " << r.substeps << ", \"ms_per_frame\": " << r.ms_frame
           << ", \"ms_constraints\": " << r.ms_constraints << ", \"ms_per_collision_pass\": " << r.ms_pass
           << ", \"ms_contacts\": " << r.ms_contacts << ", \"ms_smoothing\": " << r.ms_smoothing
-          << ", \"ms_failsafe\": " << r.ms_failsafe << ", \"contacts\": " << r.contacts
+          << ", \"ms_failsafe\": " << r.ms_failsafe << ", \"failsafe_rounds\": " << r.failsafe_rounds
+          << ", \"contacts\": " << r.contacts
           << ", \"memory_bytes\": " << r.memory << "}";
     }
     out << "]}\n";
@@ -98,6 +102,8 @@ void add_bench(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_option("--warmup", o->warmup, "frames run before timing (default 2)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--schedules", o->schedules, "current (the scene's) or paper (the paper's three)");
   cmd->add_option("--json", o->json, "also write the results as JSON");
+  cmd->add_option("--self-collision", o->self_collision, "on | off: cloth against itself (default: the scene's)")
+      ->check(CLI::IsMember({"on", "off"}));
   cmd->callback([&g, &action, o] { action = [&g, o] { return bench(g, *o); }; });
 }
 

@@ -59,6 +59,7 @@ std::string resume_command(const RunOptions& o) {
   if (o.clean) c += " --clean";
   if (o.no_impact_zones) c += " --no-impact-zones";
   if (o.no_failsafe) c += " --no-failsafe";
+  opt("--self-collision", o.self_collision);
   return c + " -o " + o.output + " --resume";
 }
 
@@ -113,9 +114,10 @@ class Progress {
     ++done_;
     if (quiet_) return;
     if (!tty_) {
-      std::printf("frame %d  ke %.3e J  rms speed %.3e m/s  max strain %.3e  contacts %ld  moved back %ld  %.2f ms\n",
+      std::printf("frame %d  ke %.3e J  rms speed %.3e m/s  max strain %.3e  contacts %ld  moved back %ld"
+                  " (%ld fail-safe rounds)  %.2f ms\n",
                   fs.frame, fs.kinetic_energy, fs.rms_speed, fs.max_strain, fs.contacts, fs.failsafe_points,
-                  1e3 * fs.seconds);
+                  fs.failsafe_rounds, 1e3 * fs.seconds);
       std::fflush(stdout);  // a log being followed shows each frame as it is done
       return;
     }
@@ -154,6 +156,7 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   if (o.smoothing >= 0) st.smoothing_iterations = o.smoothing;
   if (o.no_impact_zones) st.impact_zone_smoothing = false;
   if (o.no_failsafe) st.collision_failsafe = false;
+  if (!o.self_collision.empty()) st.self_collision = o.self_collision == "on";
   if (o.clean) {  // the solvability check (docs/solvability.md) replaces the colliders by cleaned ones
     const BodyCleaning c = clean_body(b, scene);
     scene.colliders = c.colliders;
@@ -252,6 +255,8 @@ void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_option("--smoothing", o->smoothing, "Jacobi smoothing iterations per substep")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--no-impact-zones", o->no_impact_zones, "switch off impact-zone smoothing of velocities (paper 2.3)");
   cmd->add_flag("--no-failsafe", o->no_failsafe, "switch off the crossing fail-safe (docs/collisions.md)");
+  cmd->add_option("--self-collision", o->self_collision, "on | off: cloth against itself (default: the scene's)")
+      ->check(CLI::IsMember({"on", "off"}));
   cmd->add_flag("--hash", o->hash, "print 'hash <16 hex digits>' of every frame's positions as the last line");
   cmd->add_flag("--quiet", o->quiet, "no per-frame lines");
   cmd->add_option("-o,--output", o->output, "HDF5 cache written frame by frame (readable while the run goes on)");

@@ -68,6 +68,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     long contacts = 0, colours = 0;
     ImpactZoneStats zones;
     long failsafe_points = 0;  // moved back by the fail-safe since the handler was made
+    long failsafe_rounds = 0;  // its rounds since the handler was made
   };
 
   explicit CollisionHandler(const Scene& s) : cloth_bvh_(Exec()), collider_bvh_(Exec()) {
@@ -89,13 +90,15 @@ class CollisionHandler final : public CollisionStage<Exec> {
     cloth_fr_ = upload(s.points.friction, "weft::friction");
     cloth_dfr_ = upload(s.points.dynamic_friction, "weft::dfriction");
     cloth_layer_ = upload(s.points.layer, "weft::layer");
-    std::vector<real> margin(s.triangles.size());
+    std::vector<real> margin(s.triangles.size()), failsafe_margin(s.triangles.size());
     for (size_t t = 0; t < s.triangles.size(); ++t) {
       real m = 0;
       for (int k = 0; k < 3; ++k) m = std::max(m, s.points.thickness[s.triangles[t][k]]);
       margin[t] = ns_.detect_scale * m;
+      failsafe_margin[t] = failsafe_box_margin(m);
     }
     cloth_margin_ = upload(margin, "weft::cloth_margin");
+    cloth_failsafe_margin_ = upload(failsafe_margin, "weft::cloth_failsafe_margin");
     cloth_boxes_ = View<Aabb*>("weft::cloth_boxes", s.triangles.size());
     // Collider side: all colliders' triangles over the concatenated vertices; one thickness and friction
     // for all (the largest thickness, the first collider's friction) keeps the kernels simple.
@@ -150,7 +153,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   // The crossing fail-safe over fresh candidate pairs (boxes from x_start to the final x).
   void finish_positions(const SolverState<Exec>& s, real) override {
     if (!failsafe_) return;
-    update_boxes(s);
+    update_boxes(s, cloth_failsafe_margin_);
     cloth_bvh_.refit(cloth_boxes_);
     long nself = 0, ncollider = 0;
     if (self_) nself = cloth_bvh_.query_self(KeepAllPairs{}, pairs_);
@@ -159,8 +162,10 @@ class CollisionHandler final : public CollisionStage<Exec> {
       ncollider = collider_bvh_.query(View<const Aabb*>(cloth_boxes_), KeepAllPairs{}, collider_pairs_);
     }
     if (nself + ncollider == 0) return;
-    stats_.failsafe_points += failsafe_run_.run(s.exec, cloth_side(s), collider_side(s), pairs_, nself, collider_pairs_,
-                                             ncollider, s.x, s.x_start, s.w).points;
+    const FailsafeStats fs = failsafe_run_.run(s.exec, cloth_side(s), collider_side(s), pairs_, nself, collider_pairs_,
+                                               ncollider, s.x, s.x_start, s.w);
+    stats_.failsafe_points += fs.points;
+    stats_.failsafe_rounds += fs.rounds;
   }
 
   void end_substep(const SolverState<Exec>& s, real) override {
@@ -240,9 +245,11 @@ class CollisionHandler final : public CollisionStage<Exec> {
   }
 
  public:  // kernels below launch device lambdas, which CUDA allows only in public member functions
-  void update_boxes(const SolverState<Exec>& s) {
+  // Swept boxes from x_start to x: cloth boxes inflated by `cloth_margin` (the contact margin unless given).
+  void update_boxes(const SolverState<Exec>& s, View<real*> cloth_margin = {}) {
+    if (!cloth_margin.data()) cloth_margin = cloth_margin_;
     swept_triangle_boxes(s.exec, View<const Vec3*>(s.x_start), View<const Vec3*>(s.x), View<const int* [3]>(cloth_tris_),
-                         View<const real*>(cloth_margin_), cloth_boxes_);
+                         View<const real*>(cloth_margin), cloth_boxes_);
     if (collider_boxes_.extent(0) > 0)
       swept_triangle_boxes(s.exec, View<const Vec3*>(s.collider_x_start), View<const Vec3*>(s.collider_x),
                            View<const int* [3]>(collider_tris_), ns_.detect_scale * collider_th_, collider_boxes_);
@@ -268,7 +275,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   long ncontacts_ = 0;
   View<int* [3]> cloth_tris_, collider_tris_, collider_nb_;
   View<uint8_t*> cloth_rmask_, collider_rmask_;
-  View<real*> cloth_th_, cloth_fr_, cloth_dfr_, cloth_margin_;
+  View<real*> cloth_th_, cloth_fr_, cloth_dfr_, cloth_margin_, cloth_failsafe_margin_;
   View<int*> cloth_layer_;
   real collider_th_ = 0, collider_fr_ = 1;
   View<Aabb*> cloth_boxes_, collider_boxes_;

@@ -31,6 +31,18 @@ KOKKOS_INLINE_FUNCTION CcdSettings ccd_settings(real r, const CrossingSettings& 
   return CcdSettings{max_(real(1e-6), s.tolerance_scale * r), s.max_iterations};
 }
 
+}  // namespace failsafe_detail
+
+// The margin of a triangle's swept box for the fail-safe's broad phase (`thickness`: the largest of its
+// points'). Two boxes then overlap whenever their triangles come within the crossing test's tolerance of
+// each other, max(1e-6, tolerance_scale * (r_a + r_b)) <= the sum of the margins: a pair the test could
+// flag is never left out. Far smaller than the contact margin, so resting contacts add no pairs.
+inline real failsafe_box_margin(real thickness) {
+  return failsafe_detail::CrossingSettings{}.tolerance_scale * thickness + real(1e-6);
+}
+
+namespace failsafe_detail {
+
 // Marks the cloth points of a crossing feature pair (integer flags, idempotent).
 template <class Mem>
 KOKKOS_INLINE_FUNCTION void mark(const SideMesh<Mem>& S, int v, const Kokkos::View<int*, Mem>& flag) {

@@ -16,6 +16,7 @@ struct FrameStats {
   long contacts = 0;            // contacts found by the last collision pass
   long impact_zone_points = 0;  // points smoothed at the end of the last substep
   long failsafe_points = 0;     // points the crossing fail-safe moved back, over the frame's substeps
+  long failsafe_rounds = 0;     // its rounds (each a pass over the candidate pairs), over the frame's substeps
   double seconds = 0;       // wall time of the frame
   // With SolverSettings::profile (a fence after each stage, so a little slower): wall time per stage.
   double seconds_constraints = 0, seconds_collision_passes = 0, seconds_contacts = 0, seconds_smoothing = 0,

@@ -19,7 +19,7 @@ using h5::Handle;
 using Dims = std::vector<hsize_t>;
 
 // The per-frame statistics table: one compound row per frame, fields named as in FrameStats.
-static_assert(sizeof(FrameStats) == 128, "FrameStats changed: update kStatsFields");
+static_assert(sizeof(FrameStats) == 136, "FrameStats changed: update kStatsFields");
 enum class Kind { I32, I64, F64 };
 struct StatsField {
   const char* name;
@@ -43,6 +43,7 @@ const StatsField kStatsFields[] = {
     {"seconds_smoothing", offsetof(FrameStats, seconds_smoothing), Kind::F64},
     {"seconds_failsafe", offsetof(FrameStats, seconds_failsafe), Kind::F64},
     {"collision_passes", offsetof(FrameStats, collision_passes), Kind::I64},
+    {"failsafe_rounds", offsetof(FrameStats, failsafe_rounds), Kind::I64},
 };
 
 // In memory: FrameStats. In the file: the same fields packed, little-endian.

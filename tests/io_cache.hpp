@@ -465,4 +465,23 @@ TEST(WEFT_TEST_SUITE, cli_info_describes_scene_and_cache_files) {
   EXPECT_NE(weft.output.find("not an HDF5 file"), std::string::npos) << weft.output;
 }
 
+TEST(WEFT_TEST_SUITE, cli_self_collision_switch_is_recorded_and_resumed) {
+  WEFT_NEED_CLI();
+  const CacheDir dir("cli_self_collision");
+  Cli weft(dir);
+  // The hanging sheet has no self collision of its own; --self-collision on adds the collision stage.
+  const std::string run = kSheet + " --self-collision on -o " + dir.file("c.h5");
+  ASSERT_EQ(weft(run + " --frames 1-4"), 0) << weft.output;
+  ASSERT_EQ(weft("info " + dir.file("c.h5")), 0) << weft.output;
+  EXPECT_NE(weft.output.find("self collision on"), std::string::npos) << weft.output;
+  // A resumed run must name it again: without it the settings differ.
+  EXPECT_EQ(weft(kSheet + " --frames 1-6 --resume -o " + dir.file("c.h5")), 2);
+  EXPECT_NE(weft.output.find("another self_collision setting"), std::string::npos) << weft.output;
+  ASSERT_EQ(weft(run + " --frames 1-6 --resume"), 0) << weft.output;
+  ASSERT_EQ(weft("check-intersections " + dir.file("c.h5") + " --all-frames"), 0) << weft.output;
+  EXPECT_NE(weft.output.find("\nintersections 0\n"), std::string::npos) << weft.output;
+  EXPECT_NE(weft(kSheet + " --frames 1-2 --self-collision sometimes"), 0);
+  EXPECT_NE(weft.output.find("--self-collision"), std::string::npos) << weft.output;
+}
+
 }  // namespace

@@ -24,7 +24,8 @@ How weft's scenes (io/builtin_scenes.cpp, constraints/vellum_cloth.hpp, core/sce
              prints), so both time the same frames 2..end. Newton: device synchronized before and after each frame; one CUDA graph per
              frame (as Newton's own examples do) when the device is CUDA and the substeps are even.
   contact    self-contact distance: weft keeps cloth surfaces apart by the sum of the two thicknesses
-             (2 x 0.005 m hanging-sheet, 2 x 0.004 m twist); Newton's particle_self_contact_margin is set to
+             (hanging-sheet: 2 x min(5 mm, 0.3 x the triangle height 1/(res sqrt 2)), 0.55 mm at res 387;
+             twist: 2 x 4 mm); Newton's particle_self_contact_margin is set to
              that, with a detection gap of half of it. Friction coefficient 0.5 (weft's static and dynamic
              friction). Newton ignores contacts between elements closer than margin + gap in the rest shape
              (particle_rest_shape_contact_exclusion_radius), since at 300K triangles the grid spacing (2.6 mm)
@@ -40,8 +41,9 @@ Differences that remain (stated in the output too):
     20, the same count; one VBD iteration does more work than one XPBD sweep), self-contact detected before
     and after initialization each substep (Newton's default schedule), penalty/barrier contact with
     soft_contact_ke = 1e3, soft_contact_kd = 1e-1 (Newton's cloth_twist example) and DAT truncation.
-  - weft's hanging-sheet has self collision off (it is the solver's reference scene); Newton is run on it
-    both with self-contact (as the comparison asks) and without (as weft's scene); --hanging-contact picks.
+  - weft's hanging-sheet has self collision off by default (it is the solver's reference scene); both
+    solvers run it with self collision (as the comparison asks; weft run --self-collision on) and without;
+    --hanging-contact picks.
   - weft computes in double precision, bitwise reproducibly; Newton (Warp) in single precision.
   - Newton keeps at most 64 vertex-triangle and 128 edge-edge contact candidates per element and drops the
     rest silently (twice its defaults, as its cloth_twist example); weft's contact lists are not capped.
@@ -88,11 +90,11 @@ def grid(res, origin, du, dv):
 
 class HangingSheet:
     name = "hanging-sheet"
-    thickness = 0.005
     frame_end = 72  # frames 1..72
 
     def __init__(self, res):
         self.res = res
+        self.thickness = min(0.005, 0.3 / (res * math.sqrt(2.0)))  # io/builtin_scenes.cpp hanging_sheet()
         self.x, self.tris = grid(res, (-0.5, 1.0, -0.5), (1, 0, 0), (0, 0, 1))
         self.held = np.array([0, res], dtype=np.int32)
 
@@ -244,12 +246,13 @@ def last_count(output):
     return int(m[-1]) if m else None
 
 
-def run_weft(args, scene, frames, out_dir):
+def run_weft(args, scene, frames, self_collision, out_dir):
     """One `weft run` writing a cache (ms per frame from its per-frame lines, the first stepped frame being
     warm-up), then `weft check-intersections CACHE --all-frames` on that cache: the scene is simulated once."""
-    cache = os.path.join(out_dir, "weft_%s_%d.h5" % (scene.name, scene.res))
+    on = "on" if self_collision else "off"
+    cache = os.path.join(out_dir, "weft_%s_%d_self-%s.h5" % (scene.name, scene.res, on))
     out = sh(weft_cmd(args, "run", "builtin:" + scene.name, "--res", scene.res, "--frames", "1-%d" % (1 + frames),
-                      "-o", cache))
+                      "--self-collision", on, "-o", cache))
     ms = [float(v) for v in re.findall(r"^frame \d+ .* ([0-9.]+) ms$", out, re.M)]
     head = re.search(r"^\S+: \d+ points, (\d+) triangles", out, re.M)
     timed = ms[1:] if len(ms) > 1 else ms
@@ -261,9 +264,9 @@ def run_weft(args, scene, frames, out_dir):
         "intersections": per_frame[-1] if per_frame else last_count(chk),
         "max_intersections_any_frame": max(per_frame) if per_frame else None,
         "weft_triangles": int(head[1]) if head else None, "backend": args.weft_backend,
-        "settings": {"substeps": SUBSTEPS, "iterations": WEFT_ITERATIONS, "collision_passes": 2 if scene.name != "hanging-sheet" else 0,
+        "settings": {"substeps": SUBSTEPS, "iterations": WEFT_ITERATIONS, "collision_passes": 2 if self_collision else 0,
                      "fps": FPS, "density": DENSITY, "stretch": "distance 1e10 N/m", "bend": "1e-3 N m/rad",
-                     "self_collision": scene.name != "hanging-sheet", "thickness": scene.thickness, "friction": FRICTION,
+                     "self_collision": self_collision, "thickness": scene.thickness, "friction": FRICTION,
                      "cache_info": settings.strip().splitlines()[:12]},
     }
 
@@ -307,9 +310,10 @@ def main():
     ap.add_argument("--newton-iterations", type=int, default=WEFT_ITERATIONS, help="VBD iterations per substep")
     ap.add_argument("--tri-ke", type=float, default=1e3, help="Newton membrane stiffness tri_ke = tri_ka")
     ap.add_argument("--hanging-contact", choices=["both", "on", "off"], default="both",
-                    help="Newton self-contact on the hanging sheet (weft's scene has none)")
+                    help="self collision on the hanging sheet, both solvers (weft's scene default: off)")
     ap.add_argument("--quick", action="store_true", help="CPU smoke test: hanging res 10, twist res 10, 4 frames")
     ap.add_argument("--skip-newton", action="store_true")
+    ap.add_argument("--skip-weft", action="store_true", help="run only Newton (--weft still counts its intersections)")
     ap.add_argument("--out", default="peer-results", help="folder for results.json and results.md")
     ap.add_argument("--work", default=None, help="folder for the meshes and weft's JSON (default: --out)")
     args = ap.parse_args()
@@ -352,16 +356,17 @@ def main():
         n = frames or (sc.frame_end - 1)
         tri = len(sc.tris)
         print("%s res %d: %d triangles, %d frames" % (sc.name, sc.res, tri, n), flush=True)
-        if args.weft:
-            w = run_weft(args, sc, n, work)
+        modes = [sc.name != "hanging-sheet" or args.hanging_contact != "off"]
+        if sc.name == "hanging-sheet" and args.hanging_contact == "both":
+            modes = [True, False]
+        for contact in modes if args.weft and not args.skip_weft else []:
+            w = run_weft(args, sc, n, contact, work)
             if w.pop("weft_triangles") != tri:
                 raise SystemExit("weft's %s has other triangles than this script's (%d)" % (sc.name, tri))
             rows.append(dict(scene=sc.name, res=sc.res, triangles=tri, solver="weft (%s)" % w["backend"], **w))
-            print("  weft: %.2f ms/frame, %s intersections" % (w["ms_per_frame"], w["intersections"]), flush=True)
+            print("  weft (self collision %s): %.2f ms/frame, %s intersections" % (
+                "on" if contact else "off", w["ms_per_frame"], w["intersections"]), flush=True)
         if not args.skip_newton:
-            modes = [sc.name != "hanging-sheet" or args.hanging_contact != "off"]
-            if sc.name == "hanging-sheet" and args.hanging_contact == "both":
-                modes = [True, False]
             for contact in modes:
                 r = run_newton(sc, n, device, args.newton_iterations, contact, args.tri_ke, work)
                 r["intersections"] = count_obj(args, r["obj"])
@@ -372,7 +377,7 @@ def main():
     meta = {"device": device, "weft_backend": args.weft_backend, "warp": wp_version, "newton": newton_version,
             "host": platform.node(), "python": platform.python_version(),
             "notes": __doc__[__doc__.index("How weft's"):__doc__.index("Usage:")].strip()}
-    if device and device.startswith("cuda"):
+    if wp_version and device.startswith("cuda"):
         import warp as wp
         meta["gpu"] = wp.get_device(device).name
     with open(os.path.join(args.out, "results.json"), "w") as f:
