@@ -23,6 +23,10 @@ struct Error : std::runtime_error {
 // Resolves --backend against this build; throws Error when it lacks the backend.
 Backend resolve_backend(const GlobalOptions& g);
 
+// --self-collision on|off (run, bench): overrides the scene's self_collision when `value` is not empty.
+void add_self_collision_option(CLI::App* cmd, std::string& value);
+void apply_self_collision(const std::string& value, bool& self_collision);
+
 // The work a subcommand does once parsing is done; returns the exit code.
 using Action = std::function<int()>;
 // A subcommand adds itself to `app` and, from its parse callback, sets `run`.

@@ -57,7 +57,7 @@ int bench(const GlobalOptions& g, const Options& o) {
   const Backend b = resolve_backend(g);
   Runtime rt(g.threads);
   Scene scene = io::load_scene(o.scene, io::BuiltinOptions{o.res});
-  if (!o.self_collision.empty()) scene.settings.self_collision = o.self_collision == "on";
+  apply_self_collision(o.self_collision, scene.settings.self_collision);
   std::vector<Schedule> schedules;
   if (o.schedules == "paper") schedules = {{"paper-1", 200, 20, 1}, {"paper-2", 20, 2, 10}, {"paper-3", 10, 1, 20}};
   else if (o.schedules == "current") schedules = {{"scene", 0, 0, 0}};
@@ -102,8 +102,7 @@ void add_bench(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_option("--warmup", o->warmup, "frames run before timing (default 2)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--schedules", o->schedules, "current (the scene's) or paper (the paper's three)");
   cmd->add_option("--json", o->json, "also write the results as JSON");
-  cmd->add_option("--self-collision", o->self_collision, "on | off: cloth against itself (default: the scene's)")
-      ->check(CLI::IsMember({"on", "off"}));
+  add_self_collision_option(cmd, o->self_collision);
   cmd->callback([&g, &action, o] { action = [&g, o] { return bench(g, *o); }; });
 }
 

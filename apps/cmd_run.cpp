@@ -156,7 +156,7 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   if (o.smoothing >= 0) st.smoothing_iterations = o.smoothing;
   if (o.no_impact_zones) st.impact_zone_smoothing = false;
   if (o.no_failsafe) st.collision_failsafe = false;
-  if (!o.self_collision.empty()) st.self_collision = o.self_collision == "on";
+  apply_self_collision(o.self_collision, st.self_collision);
   if (o.clean) {  // the solvability check (docs/solvability.md) replaces the colliders by cleaned ones
     const BodyCleaning c = clean_body(b, scene);
     scene.colliders = c.colliders;
@@ -255,8 +255,7 @@ void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_option("--smoothing", o->smoothing, "Jacobi smoothing iterations per substep")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--no-impact-zones", o->no_impact_zones, "switch off impact-zone smoothing of velocities (paper 2.3)");
   cmd->add_flag("--no-failsafe", o->no_failsafe, "switch off the crossing fail-safe (docs/collisions.md)");
-  cmd->add_option("--self-collision", o->self_collision, "on | off: cloth against itself (default: the scene's)")
-      ->check(CLI::IsMember({"on", "off"}));
+  add_self_collision_option(cmd, o->self_collision);
   cmd->add_flag("--hash", o->hash, "print 'hash <16 hex digits>' of every frame's positions as the last line");
   cmd->add_flag("--quiet", o->quiet, "no per-frame lines");
   cmd->add_option("-o,--output", o->output, "HDF5 cache written frame by frame (readable while the run goes on)");

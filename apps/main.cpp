@@ -24,6 +24,15 @@ Backend resolve_backend(const GlobalOptions& g) {
   return *b;
 }
 
+void add_self_collision_option(CLI::App* cmd, std::string& value) {
+  cmd->add_option("--self-collision", value, "on | off: cloth against itself (default: the scene's)")
+      ->check(CLI::IsMember({"on", "off"}));
+}
+
+void apply_self_collision(const std::string& value, bool& self_collision) {
+  if (!value.empty()) self_collision = value == "on";
+}
+
 }  // namespace weft::cli
 
 int main(int argc, char** argv) {

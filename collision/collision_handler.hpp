@@ -121,13 +121,13 @@ class CollisionHandler final : public CollisionStage<Exec> {
   const Stats& stats() const { return stats_; }
 
   void begin_substep(const SolverState<Exec>& s, real) override {
-    update_boxes(s);
+    update_boxes(s, cloth_margin_);
     cloth_bvh_.build(cloth_boxes_);
     if (collider_boxes_.extent(0) > 0) collider_bvh_.build(collider_boxes_);
   }
 
   void pass(const SolverState<Exec>& s, real) override {
-    update_boxes(s);
+    update_boxes(s, cloth_margin_);
     cloth_bvh_.refit(cloth_boxes_);
     if (collider_boxes_.extent(0) > 0) collider_bvh_.refit(collider_boxes_);
     const SideMesh<Mem> cloth = cloth_side(s);
@@ -245,9 +245,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
   }
 
  public:  // kernels below launch device lambdas, which CUDA allows only in public member functions
-  // Swept boxes from x_start to x: cloth boxes inflated by `cloth_margin` (the contact margin unless given).
-  void update_boxes(const SolverState<Exec>& s, View<real*> cloth_margin = {}) {
-    if (!cloth_margin.data()) cloth_margin = cloth_margin_;
+  // Swept boxes from x_start to x: cloth boxes inflated by `cloth_margin` (per triangle), collider boxes by
+  // the contact margin.
+  void update_boxes(const SolverState<Exec>& s, const View<real*>& cloth_margin) {
     swept_triangle_boxes(s.exec, View<const Vec3*>(s.x_start), View<const Vec3*>(s.x), View<const int* [3]>(cloth_tris_),
                          View<const real*>(cloth_margin), cloth_boxes_);
     if (collider_boxes_.extent(0) > 0)

@@ -26,7 +26,7 @@ Scene hanging_sheet(int res) {
   s.name = "builtin:hanging-sheet";
   const Mesh g = grid(res, res, {-0.5, 1.0, -0.5}, {1, 0, 0}, {0, 0, 1});
   // Used only when self collision is switched on (weft run --self-collision on): as for the skirt, the
-  // thickness stays below 0.3 of the grid spacing so that a point never reaches its own next faces.
+  // thickness stays below 0.3 of the triangle height so that a point never reaches its own next faces.
   ClothMaterial mat;
   mat.thickness = std::min(0.005, 0.3 / (res * std::sqrt(2.0)));  // triangle height 1 / (res sqrt 2)
   add_cloth_piece(s, g.x, g.tris, mat);

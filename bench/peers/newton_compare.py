@@ -2,8 +2,8 @@
 """weft next to a peer: Newton's VBD cloth solver with self-contact, on the same scenes, GPU and run.
 
 Runs weft's built-in `hanging-sheet` (at several sizes) and `twist` scenes in Newton (PyPI `newton` and
-`warp-lang`, optional: weft never needs them) and in weft (`weft bench --json` for time, `weft
-check-intersections` for the count), then writes results.json and results.md: scene, triangles, solver,
+`warp-lang`, optional: weft never needs them) and in weft (`weft run -o CACHE` for time, `weft
+check-intersections CACHE --all-frames` for the count), then writes results.json and results.md: scene, triangles, solver,
 ms/frame, intersections of the final frame, settings. Newton's final mesh is written as OBJ and counted by
 `weft check-intersections mesh.obj`, so both sides are judged by the same discrete triangle-triangle test
 (adjacent triangles judged by their shared vertices).
@@ -127,12 +127,17 @@ class Twist:
                          dy * np.sin(a) + dz * np.cos(a)], axis=1)
 
 
-def write_obj(path, x, tris):
+def write_text(path, text):
+    """Writes under a temporary name and renames when complete: a reader never sees half a file."""
     tmp = path + ".tmp"
     with open(tmp, "w") as f:
-        f.write("".join("v %.9g %.9g %.9g\n" % tuple(p) for p in x))
-        f.write("".join("f %d %d %d\n" % (a + 1, b + 1, c + 1) for a, b, c in tris))
+        f.write(text)
     os.replace(tmp, path)
+
+
+def write_obj(path, x, tris):
+    write_text(path, "".join("v %.9g %.9g %.9g\n" % tuple(p) for p in x) +
+               "".join("f %d %d %d\n" % (a + 1, b + 1, c + 1) for a, b, c in tris))
 
 
 # ---------------------------------------------------------------------------------------------------- Newton
@@ -315,7 +320,7 @@ def main():
     ap.add_argument("--skip-newton", action="store_true")
     ap.add_argument("--skip-weft", action="store_true", help="run only Newton (--weft still counts its intersections)")
     ap.add_argument("--out", default="peer-results", help="folder for results.json and results.md")
-    ap.add_argument("--work", default=None, help="folder for the meshes and weft's JSON (default: --out)")
+    ap.add_argument("--work", default=None, help="folder for the meshes and weft's caches (default: --out)")
     args = ap.parse_args()
 
     if args.quick:
@@ -380,13 +385,11 @@ def main():
     if wp_version and device.startswith("cuda"):
         import warp as wp
         meta["gpu"] = wp.get_device(device).name
-    with open(os.path.join(args.out, "results.json"), "w") as f:
-        json.dump({"meta": meta, "rows": rows}, f, indent=1)
+    write_text(os.path.join(args.out, "results.json"), json.dumps({"meta": meta, "rows": rows}, indent=1))
     md = "# weft vs Newton VBD\n\nNewton %s, Warp %s, device %s%s, weft backend %s.\n\n%s\n```\n%s\n```\n" % (
         newton_version, wp_version, device, " (%s)" % meta.get("gpu") if meta.get("gpu") else "", args.weft_backend,
         table(rows), meta["notes"])
-    with open(os.path.join(args.out, "results.md"), "w") as f:
-        f.write(md)
+    write_text(os.path.join(args.out, "results.md"), md)
     print(table(rows))
 
 
