@@ -115,9 +115,9 @@ class Progress {
     if (quiet_) return;
     if (!tty_) {
       std::printf("frame %d  ke %.3e J  rms speed %.3e m/s  max strain %.3e  contacts %ld  moved back %ld"
-                  " (%ld fail-safe rounds)  %.2f ms\n",
+                  " (%ld pinned, %ld fail-safe rounds)  pin lag %.2e m  %.2f ms\n",
                   fs.frame, fs.kinetic_energy, fs.rms_speed, fs.max_strain, fs.contacts, fs.failsafe_points,
-                  fs.failsafe_rounds, 1e3 * fs.seconds);
+                  fs.failsafe_pinned, fs.failsafe_rounds, fs.max_pin_lag, 1e3 * fs.seconds);
       std::fflush(stdout);  // a log being followed shows each frame as it is done
       return;
     }

@@ -26,10 +26,12 @@ class SimulationOn final : public Simulation {
   FrameStats step_frame() override {
     const long moved_back = collisions_ ? collisions_->stats().failsafe_points : 0;
     const long rounds = collisions_ ? collisions_->stats().failsafe_rounds : 0;
+    const long pinned = collisions_ ? collisions_->stats().failsafe_pinned : 0;
     FrameStats fs = with_collision_stats(solver_.step_frame());
     if (collisions_) {
       fs.failsafe_points = collisions_->stats().failsafe_points - moved_back;
       fs.failsafe_rounds = collisions_->stats().failsafe_rounds - rounds;
+      fs.failsafe_pinned = collisions_->stats().failsafe_pinned - pinned;
     }
     return fs;
   }

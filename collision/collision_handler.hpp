@@ -69,6 +69,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     ImpactZoneStats zones;
     long failsafe_points = 0;  // moved back by the fail-safe since the handler was made
     long failsafe_rounds = 0;  // its rounds since the handler was made
+    long failsafe_pinned = 0;  // pinned points among failsafe_points
   };
 
   explicit CollisionHandler(const Scene& s) : cloth_bvh_(Exec()), collider_bvh_(Exec()) {
@@ -166,6 +167,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
                                                ncollider, s.x, s.x_start, s.w);
     stats_.failsafe_points += fs.points;
     stats_.failsafe_rounds += fs.rounds;
+    stats_.failsafe_pinned += fs.pinned;
   }
 
   void end_substep(const SolverState<Exec>& s, real) override {

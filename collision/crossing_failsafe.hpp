@@ -86,13 +86,13 @@ struct MarkCrossings {
   Kokkos::View<IndexPair*, Mem> pairs;
   Kokkos::View<int*, Mem> back, flag;
   int round;
-  bool self;
+  bool self, all;
   CrossingSettings cs;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const int ta_i = pairs(i).first, tb_i = pairs(i).second;
     const int ta[3] = {A.tris(ta_i, 0), A.tris(ta_i, 1), A.tris(ta_i, 2)};
     const int tb[3] = {B.tris(tb_i, 0), B.tris(tb_i, 1), B.tris(tb_i, 2)};
-    if (round > 0) {
+    if (!all) {
       bool changed = false;
       for (int k = 0; k < 3; ++k)
         changed = changed || moved_back_in(A, ta[k], back, round - 1) || moved_back_in(B, tb[k], back, round - 1);
@@ -133,20 +133,27 @@ struct MarkCrossings {
   }
 };
 
-// Moves flagged points that can move and are not back yet to their start positions; counts them.
+// Counts of one round, packed into one integer sum: points moved back + kPinnedUnit * pinned points that
+// are flagged and still where their animation put them.
+constexpr long kPinnedUnit = 1L << 32;
+
+// Moves flagged points that are not back yet to their start positions and counts them. Pinned points go back
+// only when `pinned` is set (the last resort); until then their flags stay up and they are counted.
 template <class Mem>
 struct MoveBack {
   Kokkos::View<Vec3*, Mem> x, xs;
   Kokkos::View<real*, Mem> w;
   Kokkos::View<int*, Mem> back, flag;
   int round;
-  KOKKOS_INLINE_FUNCTION void operator()(long i, long& moved) const {
+  bool pinned;
+  KOKKOS_INLINE_FUNCTION void operator()(long i, long& counts) const {
     if (!flag(i)) return;
+    if (back(i) >= 0) { flag(i) = 0; return; }
+    if (!(w(i) > 0) && !pinned) { counts += kPinnedUnit; return; }
     flag(i) = 0;
-    if (!(w(i) > 0) || back(i) >= 0) return;
     x(i) = xs(i);
     back(i) = round;
-    ++moved;
+    counts += 1;
   }
 };
 
@@ -154,6 +161,7 @@ struct MoveBack {
 
 struct FailsafeStats {
   long points = 0;  // points moved back to their start positions
+  long pinned = 0;  // of which pinned points (they trail their animation for the substep)
   int rounds = 0;
 };
 
@@ -177,21 +185,31 @@ class CrossingFailsafe {
       flag_ = Kokkos::View<int*, Mem>("weft::failsafe_flag", n);
     }
     Kokkos::deep_copy(exec, back_, -1);
+    Kokkos::deep_copy(exec, flag_, 0);
     FailsafeStats st;
-    // Every round moves at least one more point back, so there are at most n + 1.
+    // Every round moves at least one more point back, so there are at most n + 2.
+    bool pinned = false;
     for (int round = 0;; ++round) {
+      const bool all = round == 0 || pinned;
       if (nself > 0)
         Kokkos::parallel_for("weft::failsafe_self", Kokkos::RangePolicy<Exec>(exec, 0, nself),
-                             MarkCrossings<Mem>{cloth, cloth, self_pairs, back_, flag_, round, true, cs_});
+                             MarkCrossings<Mem>{cloth, cloth, self_pairs, back_, flag_, round, true, all, cs_});
       if (ncollider > 0)
         Kokkos::parallel_for("weft::failsafe_collider", Kokkos::RangePolicy<Exec>(exec, 0, ncollider),
-                             MarkCrossings<Mem>{cloth, collider, collider_pairs, back_, flag_, round, false, cs_});
-      long moved = 0;
+                             MarkCrossings<Mem>{cloth, collider, collider_pairs, back_, flag_, round, false, all, cs_});
+      long counts = 0;
       Kokkos::parallel_reduce("weft::failsafe_move_back", Kokkos::RangePolicy<Exec>(exec, 0, n),
-                              MoveBack<Mem>{x, xs, w, back_, flag_, round}, moved);
+                              MoveBack<Mem>{x, xs, w, back_, flag_, round, pinned}, counts);
+      const long moved = counts % kPinnedUnit, waiting = counts / kPinnedUnit;
       st.rounds = round + 1;
       st.points += moved;
-      if (moved == 0) return st;
+      if (pinned) st.pinned += moved;
+      if (moved > 0) { pinned = false; continue; }
+      if (pinned || waiting == 0) return st;
+      // Only pinned points are left to undo a crossing: test every pair afresh (earlier flags may be stale)
+      // and let the pinned points of those still crossing trail their animation for this substep.
+      Kokkos::deep_copy(exec, flag_, 0);
+      pinned = true;
     }
   }
 

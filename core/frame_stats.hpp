@@ -17,6 +17,8 @@ struct FrameStats {
   long impact_zone_points = 0;  // points smoothed at the end of the last substep
   long failsafe_points = 0;     // points the crossing fail-safe moved back, over the frame's substeps
   long failsafe_rounds = 0;     // its rounds (each a pass over the candidate pairs), over the frame's substeps
+  long failsafe_pinned = 0;     // of failsafe_points, pinned points held back (they trail their animation)
+  real max_pin_lag = 0;         // m, largest distance of a pinned point from its animated target
   double seconds = 0;       // wall time of the frame
   // With SolverSettings::profile (a fence after each stage, so a little slower): wall time per stage.
   double seconds_constraints = 0, seconds_collision_passes = 0, seconds_contacts = 0, seconds_smoothing = 0,

@@ -100,6 +100,13 @@ class Solver {
     Kokkos::parallel_for("weft::stats_strain", Kokkos::RangePolicy<Exec>(exec_, 0, nr),
                          kernels::EdgeStrain<Mem>{rows, x, strain});
     fs.max_strain = reduce_fixed(exec_, strain, MaxOp{});
+    const long nk = long(kin_point_.extent(0));
+    if (nk > 0) {
+      const auto lag = Kokkos::subview(e, Kokkos::make_pair(0L, nk));
+      Kokkos::parallel_for("weft::stats_pin_lag", Kokkos::RangePolicy<Exec>(exec_, 0, nk),
+                           kernels::PinLag<Mem>{kin_point_, kin_target_, targets_, x, lag});
+      fs.max_pin_lag = reduce_fixed(exec_, lag, MaxOp{});
+    }
     long bad = 0;
     Kokkos::parallel_reduce("weft::stats_finite", Kokkos::RangePolicy<Exec>(exec_, 0, n),
                             kernels::CountNonFinite<Mem>{x}, bad);
@@ -115,12 +122,14 @@ class Solver {
       Kokkos::deep_copy(exec_, state_.collider_x_start, state_.collider_x);
       kernels::interpolate_animation(exec_, collider_frames_, state_.collider_x, t_end);
     }
+    Kokkos::deep_copy(exec_, targets_before_, targets_);
     kernels::interpolate_animation(exec_, target_frames_, targets_, t_end);
     Kokkos::parallel_for("weft::predict", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
                          kernels::Predict<Mem>{state_.x, state_.x_start, state_.v, state_.w, st_.gravity + st_.wind,
                                                max_(real(0), 1 - st_.velocity_damping * h), h});
     Kokkos::parallel_for("weft::kinematic", Kokkos::RangePolicy<Exec>(exec_, 0, kin_point_.extent(0)),
-                         kernels::FollowTargets<Mem>{kin_point_, kin_target_, targets_, state_.x});
+                         kernels::FollowTargets<Mem>{kin_point_, kin_target_, targets_, targets_before_, state_.x,
+                                                       kPinCatchUp});
     Kokkos::deep_copy(exec_, lambda_, 0.0);
     if (collision_) collision_->begin_substep(state_, h);
     const int P = collision_ ? st_.collision_passes : 0, I = st_.iterations;
@@ -183,6 +192,8 @@ class Solver {
   }
 
  private:
+  // Fraction of its distance a pinned point held back by the crossing fail-safe closes per substep.
+  static constexpr real kPinCatchUp = 0.25;
   template <class V>
   std::vector<typename V::non_const_value_type> to_host(const V& d) const {
     auto m = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d);
@@ -228,6 +239,7 @@ class Solver {
   void upload_animation(const Scene& sc) {
     target_frames_ = upload_frames(sc.pin_targets, "weft::target_frames");
     targets_ = View<Vec3*>("weft::targets", target_frames_.extent(1));
+    targets_before_ = View<Vec3*>("weft::targets_before", target_frames_.extent(1));
     kernels::interpolate_animation(exec_, target_frames_, targets_, 0.0);
     kin_point_ = upload(sc.kinematic_point, "weft::kin_point");
     kin_target_ = upload(sc.kinematic_target, "weft::kin_target");
@@ -297,7 +309,7 @@ class Solver {
   View<Row*> rows_;
   std::vector<long> colour_offset_;
   View<Vec3**> target_frames_, collider_frames_;
-  View<Vec3*> targets_;
+  View<Vec3*> targets_, targets_before_;  // targets at the end and at the start of the substep
   View<int*> kin_point_, kin_target_;
   std::vector<int> collider_offset_;
   View<Vec3*> row_delta_;

@@ -48,11 +48,30 @@ struct Predict {
   }
 };
 
+// Distance of each pinned point from its target (it trails when the crossing fail-safe held it back).
+template <class Mem>
+struct PinLag {
+  Kokkos::View<int*, Mem> point, target;
+  Kokkos::View<Vec3*, Mem> goals, x;
+  Kokkos::View<real*, Mem> lag;
+  KOKKOS_INLINE_FUNCTION void operator()(long k) const { lag(k) = sqrt_(norm2(x(point(k)) - goals(target(k)))); }
+};
+
+// Pinned points go to their targets. One that the crossing fail-safe held back (it is not where its previous
+// target was) moves with its animation and closes `catch_up` of its lag per substep instead of jumping, so
+// that it does not replay at once the motion that was stopped; it snaps to its target once within 1 µm.
 template <class Mem>
 struct FollowTargets {
   Kokkos::View<int*, Mem> point, target;
-  Kokkos::View<Vec3*, Mem> goals, x;
-  KOKKOS_INLINE_FUNCTION void operator()(long k) const { x(point(k)) = goals(target(k)); }
+  Kokkos::View<Vec3*, Mem> goals, previous, x;
+  real catch_up;
+  KOKKOS_INLINE_FUNCTION void operator()(long k) const {
+    const int i = point(k), t = target(k);
+    const Vec3 g = goals(t), p = previous(t), xi = x(i);
+    if (xi.x == p.x && xi.y == p.y && xi.z == p.z) { x(i) = g; return; }
+    const Vec3 lag = (1 - catch_up) * (p - xi);
+    x(i) = norm2(lag) < real(1e-12) ? g : g - lag;
+  }
 };
 
 template <class Mem>

@@ -100,6 +100,31 @@ Scene layer_stack(int res) {
   return s;
 }
 
+// Fifty square sheets dropped onto a sphere and the ground: the paper's many-layer scaling case (at --res 69,
+// 476,100 triangles). Each layer is turned 7 degrees from the one below, so no two layers' points line up;
+// layers start 2.8 thicknesses apart, outside contact reach, and the thickness stays below 0.3 of a
+// triangle's height, as in the skirt.
+Scene layer_drop(int res) {
+  Scene s;
+  s.name = "builtin:layer-drop";
+  const real side = 1.0, height = side / res / std::sqrt(2.0);
+  const real thickness = std::min(0.003, 0.3 * height);
+  for (int l = 0; l < 50; ++l) {
+    Mesh g = grid(res, res, {-side / 2, 0.75 + 2.8 * thickness * l, -side / 2}, {side, 0, 0}, {0, 0, side});
+    const real a = l * 7 * pi / 180, c = std::cos(a), sn = std::sin(a);
+    for (Vec3& p : g.x) p = {c * p.x - sn * p.z, p.y, sn * p.x + c * p.z};
+    ClothMaterial mat;
+    mat.layer = l;
+    mat.thickness = thickness;
+    add_cloth_piece(s, g.x, g.tris, mat);
+  }
+  s.colliders.push_back(static_collider("sphere", uv_sphere({0, 0.4, 0}, 0.3, 32, 64), 0.002));
+  s.colliders.push_back(static_collider("ground", grid(1, 1, {-2, 0, -2}, {0, 0, 4}, {4, 0, 0}), 0.0));
+  s.settings.frame_end = 72;
+  s.needs_collisions = true;
+  return s;
+}
+
 // A box crossing a hanging sheet at 10 m/s.
 Scene fast_collider(int res) {
   Scene s;
@@ -170,6 +195,7 @@ struct Entry { const char* name; Scene (*make)(int); int default_res; };
 const Entry kScenes[] = {
     {"hanging-sheet", hanging_sheet, 32}, {"drape-sphere", drape_sphere, 48}, {"layer-stack", layer_stack, 24},
     {"twist", twist, 48},                 {"fast-collider", fast_collider, 32}, {"skirt", skirt, 24},
+    {"layer-drop", layer_drop, 12},
     {"demo", demo_scene, 34},  // io/demo_scene.cpp; about 50K cloth triangles
 };
 

@@ -19,7 +19,7 @@ using h5::Handle;
 using Dims = std::vector<hsize_t>;
 
 // The per-frame statistics table: one compound row per frame, fields named as in FrameStats.
-static_assert(sizeof(FrameStats) == 136, "FrameStats changed: update kStatsFields");
+static_assert(sizeof(FrameStats) == 152, "FrameStats changed: update kStatsFields");
 enum class Kind { I32, I64, F64 };
 struct StatsField {
   const char* name;
@@ -44,6 +44,8 @@ const StatsField kStatsFields[] = {
     {"seconds_failsafe", offsetof(FrameStats, seconds_failsafe), Kind::F64},
     {"collision_passes", offsetof(FrameStats, collision_passes), Kind::I64},
     {"failsafe_rounds", offsetof(FrameStats, failsafe_rounds), Kind::I64},
+    {"failsafe_pinned", offsetof(FrameStats, failsafe_pinned), Kind::I64},
+    {"max_pin_lag", offsetof(FrameStats, max_pin_lag), Kind::F64},
 };
 
 // In memory: FrameStats. In the file: the same fields packed, little-endian.
