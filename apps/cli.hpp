@@ -1,6 +1,7 @@
 // The weft command line: global options, and subcommands that register themselves (apps/cmd_*.cpp).
 #pragma once
 #include "backends/backend.hpp"
+#include "core/scene.hpp"
 
 #include <CLI/CLI.hpp>
 #include <functional>
@@ -26,6 +27,10 @@ Backend resolve_backend(const GlobalOptions& g);
 // --self-collision on|off (run, bench): overrides the scene's self_collision when `value` is not empty.
 void add_self_collision_option(CLI::App* cmd, std::string& value);
 void apply_self_collision(const std::string& value, bool& self_collision);
+
+// Prints `weft: warning: SCENE: ...` on stderr for each cloth piece too thick for its triangles
+// (thickness_warnings, core/scene.hpp); the run goes on.
+void warn_about_thickness(const Scene& s);
 
 // The work a subcommand does once parsing is done; returns the exit code.
 using Action = std::function<int()>;

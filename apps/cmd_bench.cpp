@@ -58,6 +58,7 @@ int bench(const GlobalOptions& g, const Options& o) {
   Runtime rt(g.threads);
   Scene scene = io::load_scene(o.scene, io::BuiltinOptions{o.res});
   apply_self_collision(o.self_collision, scene.settings.self_collision);
+  warn_about_thickness(scene);
   std::vector<Schedule> schedules;
   if (o.schedules == "paper") schedules = {{"paper-1", 200, 20, 1}, {"paper-2", 20, 2, 10}, {"paper-3", 10, 1, 20}};
   else if (o.schedules == "current") schedules = {{"scene", 0, 0, 0}};

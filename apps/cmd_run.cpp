@@ -157,6 +157,7 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   if (o.no_impact_zones) st.impact_zone_smoothing = false;
   if (o.no_failsafe) st.collision_failsafe = false;
   apply_self_collision(o.self_collision, st.self_collision);
+  warn_about_thickness(scene);
   if (o.clean) {  // the solvability check (docs/solvability.md) replaces the colliders by cleaned ones
     const BodyCleaning c = clean_body(b, scene);
     scene.colliders = c.colliders;

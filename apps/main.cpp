@@ -1,5 +1,6 @@
 #include "apps/cli.hpp"
 
+#include <cstdio>
 #include <iostream>
 #include <map>
 
@@ -31,6 +32,10 @@ void add_self_collision_option(CLI::App* cmd, std::string& value) {
 
 void apply_self_collision(const std::string& value, bool& self_collision) {
   if (!value.empty()) self_collision = value == "on";
+}
+
+void warn_about_thickness(const Scene& s) {
+  for (const std::string& w : thickness_warnings(s)) std::fprintf(stderr, "weft: warning: %s: %s\n", s.name.c_str(), w.c_str());
 }
 
 }  // namespace weft::cli

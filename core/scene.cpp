@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 #include "core/topology.hpp"
 
+#include <cstdio>
 #include <sstream>
 
 namespace weft {
@@ -109,6 +110,38 @@ void validate_scene(const Scene& s) {
   if (!(st.fps > 0) || st.substeps < 1 || st.iterations < 0 || st.collision_passes < 0 || st.smoothing_iterations < 0 ||
       st.frame_end < st.frame_start)
     fail(s, "invalid solver settings (fps > 0, substeps >= 1, iterations/passes >= 0, frame_end >= frame_start)");
+}
+
+std::vector<std::string> thickness_warnings(const Scene& s) {
+  std::vector<std::string> out;
+  if (!s.settings.self_collision) return out;
+  struct Worst { long tri = -1, count = 0; real ratio = 0, height = 0, thickness = 0; };
+  std::vector<Worst> worst;
+  for (size_t t = 0; t < s.triangles.size(); ++t) {
+    const auto& tr = s.triangles[t];
+    const Vec3 a = s.points.position[tr[0]], b = s.points.position[tr[1]], c = s.points.position[tr[2]];
+    const real longest = sqrt_(max_(norm2(b - a), max_(norm2(c - b), norm2(a - c))));
+    const real height = norm(cross(b - a, c - a)) / longest;  // 2 x area / longest edge
+    const real th = max_(s.points.thickness[tr[0]], max_(s.points.thickness[tr[1]], s.points.thickness[tr[2]]));
+    if (!(th > kMaxThicknessPerHeight * height)) continue;
+    const size_t piece = size_t(s.points.piece[tr[0]]);
+    if (worst.size() <= piece) worst.resize(piece + 1);
+    Worst& w = worst[piece];
+    ++w.count;
+    if (th / height > w.ratio) w = {long(t), w.count, th / height, height, th};
+  }
+  char buf[512];
+  for (size_t p = 0; p < worst.size(); ++p) {
+    const Worst& w = worst[p];
+    if (w.count == 0) continue;
+    std::snprintf(buf, sizeof buf,
+                  "cloth piece %zu: thickness %.3g m is more than %.1f of the height of %ld of its triangles (triangle "
+                  "%ld is %.3g m high): self contacts reach 2.5 x the thickness and will touch a point's own "
+                  "neighbouring faces, which locks the cloth; lower the thickness below %.3g m or coarsen the mesh",
+                  p, w.thickness, kMaxThicknessPerHeight, w.count, w.tri, w.height, kMaxThicknessPerHeight * w.height);
+    out.push_back(buf);
+  }
+  return out;
 }
 
 }  // namespace weft

@@ -104,4 +104,10 @@ struct Scene {
 // negative mass or thickness, inconsistent animation frames, bad settings.
 void validate_scene(const Scene& s);
 
+// Self contacts reach 2.5 x a point's thickness (1.25 x the two sides'); past 0.4 of a triangle's smallest
+// height they reach the point's own neighbouring faces and lock the cloth. One warning per cloth piece with
+// such triangles (none with self collision off): what to change, and where.
+constexpr real kMaxThicknessPerHeight = 0.4;
+std::vector<std::string> thickness_warnings(const Scene& s);
+
 }  // namespace weft

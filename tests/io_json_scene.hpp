@@ -294,4 +294,18 @@ TEST(WEFT_TEST_SUITE, io_json_errors_name_file_and_path) {
       contains(input_error([&] { read_json_scene(dir.file("none.json")); }), dir.file("none.json") + ": cannot open"));
 }
 
+// A cloth too thick for its triangles is flagged once per piece, with the triangle and the thickness to use;
+// every built-in scene at its own resolution is not.
+TEST(WEFT_TEST_SUITE, a_cloth_too_thick_for_its_triangles_gets_a_warning) {
+  for (const std::string& name : builtin_scene_names())
+    EXPECT_TRUE(thickness_warnings(make_builtin_scene(name, {})).empty()) << name;
+  Scene s = make_builtin_scene("drape-sphere", {120});  // 1.2 m / 120: triangles 7.07 mm high, thickness 5 mm
+  const std::vector<std::string> w = thickness_warnings(s);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("cloth piece 0"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("0.00283 m"), std::string::npos) << w[0];
+  s.settings.self_collision = false;  // no self contacts, nothing to warn about
+  EXPECT_TRUE(thickness_warnings(s).empty());
+}
+
 }  // namespace
