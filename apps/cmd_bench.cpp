@@ -21,8 +21,11 @@ struct Result {
   std::string schedule;
   int iterations, passes, substeps;
   double ms_frame = 0, ms_constraints = 0, ms_pass = 0, ms_contacts = 0, ms_smoothing = 0, ms_failsafe = 0;
+  // The collision stage's parts: tree builds per frame; broad phase, narrow phase, colouring per pass.
+  double ms_build = 0, ms_broad = 0, ms_narrow = 0, ms_colouring = 0;
   double contacts = 0, failsafe_rounds = 0;  // means per frame
   long memory = -1;
+  bool collision_stage = false;  // the scene has one (colliders or self collision)
 };
 
 Result bench_one(Backend b, Scene scene, const Options& o, const Schedule& sc) {
@@ -43,11 +46,17 @@ Result bench_one(Backend b, Scene scene, const Options& o, const Schedule& sc) {
     r.ms_smoothing += 1e3 * fs.seconds_smoothing / o.frames;
     r.ms_failsafe += 1e3 * fs.seconds_failsafe / o.frames;
     r.ms_pass += 1e3 * fs.seconds_collision_passes;
+    r.ms_build += 1e3 * fs.seconds_lbvh_build / o.frames;
+    r.ms_broad += 1e3 * fs.seconds_broad_phase;
+    r.ms_narrow += 1e3 * fs.seconds_narrow_phase;
+    r.ms_colouring += 1e3 * fs.seconds_contact_colouring;
     passes += fs.collision_passes;
     r.contacts += double(fs.contacts) / o.frames;
     r.failsafe_rounds += double(fs.failsafe_rounds) / o.frames;
   }
-  r.ms_pass = passes > 0 ? r.ms_pass / passes : 0;
+  r.collision_stage = passes > 0;
+  for (double* per_pass : {&r.ms_pass, &r.ms_broad, &r.ms_narrow, &r.ms_colouring})
+    *per_pass = passes > 0 ? *per_pass / passes : 0;
   const long mem1 = device_memory_used_bytes();
   r.memory = mem0 >= 0 && mem1 >= 0 ? mem1 - mem0 : -1;
   return r;
@@ -74,6 +83,9 @@ int bench(const GlobalOptions& g, const Options& o) {
     std::printf("%-9s %5d %5d %5d %10.2f %12.2f %13.3f %10.2f %10.2f %10.2f %8.1f %10.0f %9.1f\n", r.schedule.c_str(),
                 r.iterations, r.passes, r.substeps, r.ms_frame, r.ms_constraints, r.ms_pass, r.ms_contacts,
                 r.ms_smoothing, r.ms_failsafe, r.failsafe_rounds, r.contacts, r.memory >= 0 ? r.memory / 1048576.0 : -1.0);
+    if (r.collision_stage)
+      std::printf("%-9s collision stage: tree builds %.2f ms/frame; per pass: broad phase %.3f ms, narrow phase (CCD) "
+                  "%.3f ms, contact colouring %.3f ms\n", "", r.ms_build, r.ms_broad, r.ms_narrow, r.ms_colouring);
     results.push_back(r);
   }
   if (!o.json.empty()) io::write_file_atomically(o.json, [&](std::ostream& out) {
@@ -86,6 +98,8 @@ int bench(const GlobalOptions& g, const Options& o) {
           << ", \"ms_constraints\": " << r.ms_constraints << ", \"ms_per_collision_pass\": " << r.ms_pass
           << ", \"ms_contacts\": " << r.ms_contacts << ", \"ms_smoothing\": " << r.ms_smoothing
           << ", \"ms_failsafe\": " << r.ms_failsafe << ", \"failsafe_rounds\": " << r.failsafe_rounds
+          << ", \"ms_lbvh_build\": " << r.ms_build << ", \"ms_broad_phase_per_pass\": " << r.ms_broad
+          << ", \"ms_narrow_phase_per_pass\": " << r.ms_narrow << ", \"ms_colouring_per_pass\": " << r.ms_colouring
           << ", \"contacts\": " << r.contacts
           << ", \"memory_bytes\": " << r.memory << "}";
     }

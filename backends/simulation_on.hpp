@@ -24,15 +24,17 @@ class SimulationOn final : public Simulation {
     Kokkos::deep_copy(tris_, m);
   }
   FrameStats step_frame() override {
-    const long moved_back = collisions_ ? collisions_->stats().failsafe_points : 0;
-    const long rounds = collisions_ ? collisions_->stats().failsafe_rounds : 0;
-    const long pinned = collisions_ ? collisions_->stats().failsafe_pinned : 0;
+    if (!collisions_) return solver_.step_frame();
+    const auto before = collisions_->stats();  // the handler's totals: this frame's are the differences
     FrameStats fs = with_collision_stats(solver_.step_frame());
-    if (collisions_) {
-      fs.failsafe_points = collisions_->stats().failsafe_points - moved_back;
-      fs.failsafe_rounds = collisions_->stats().failsafe_rounds - rounds;
-      fs.failsafe_pinned = collisions_->stats().failsafe_pinned - pinned;
-    }
+    const auto& after = collisions_->stats();
+    fs.failsafe_points = after.failsafe_points - before.failsafe_points;
+    fs.failsafe_rounds = after.failsafe_rounds - before.failsafe_rounds;
+    fs.failsafe_pinned = after.failsafe_pinned - before.failsafe_pinned;
+    fs.seconds_lbvh_build = after.seconds_lbvh_build - before.seconds_lbvh_build;
+    fs.seconds_broad_phase = after.seconds_broad_phase - before.seconds_broad_phase;
+    fs.seconds_narrow_phase = after.seconds_narrow_phase - before.seconds_narrow_phase;
+    fs.seconds_contact_colouring = after.seconds_contact_colouring - before.seconds_contact_colouring;
     return fs;
   }
   FrameStats measure() const override { return with_collision_stats(solver_.measure()); }

@@ -13,6 +13,7 @@
 #include "core/scene.hpp"
 #include "core/solver_state.hpp"
 
+#include <chrono>
 #include <map>
 
 namespace weft {
@@ -70,6 +71,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
     long failsafe_points = 0;  // moved back by the fail-safe since the handler was made
     long failsafe_rounds = 0;  // its rounds since the handler was made
     long failsafe_pinned = 0;  // pinned points among failsafe_points
+    // With profile (fenced), since the handler was made: FrameStats' collision stage times.
+    double seconds_lbvh_build = 0, seconds_broad_phase = 0, seconds_narrow_phase = 0, seconds_contact_colouring = 0;
   };
 
   explicit CollisionHandler(const Scene& s) : cloth_bvh_(Exec()), collider_bvh_(Exec()) {
@@ -84,6 +87,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     epsilon_ = st.impact_zone_epsilon;
     sweeps_ = st.impact_zone_sweeps;
     failsafe_ = st.collision_failsafe;
+    profile_ = st.profile;
     // Cloth side.
     cloth_tris_ = upload_tris(s.triangles);
     cloth_rmask_ = upload(representative_features(s.triangles, int(s.points.size())), "weft::cloth_rmask");
@@ -122,21 +126,25 @@ class CollisionHandler final : public CollisionStage<Exec> {
   const Stats& stats() const { return stats_; }
 
   void begin_substep(const SolverState<Exec>& s, real) override {
-    update_boxes(s, cloth_margin_);
-    cloth_bvh_.build(cloth_boxes_);
-    if (collider_boxes_.extent(0) > 0) collider_bvh_.build(collider_boxes_);
+    timed(stats_.seconds_lbvh_build, [&] {
+      update_boxes(s, cloth_margin_);
+      cloth_bvh_.build(cloth_boxes_);
+      if (collider_boxes_.extent(0) > 0) collider_bvh_.build(collider_boxes_);
+    });
   }
 
   void pass(const SolverState<Exec>& s, real) override {
-    update_boxes(s, cloth_margin_);
-    cloth_bvh_.refit(cloth_boxes_);
-    if (collider_boxes_.extent(0) > 0) collider_bvh_.refit(collider_boxes_);
+    timed(stats_.seconds_broad_phase, [&] {
+      update_boxes(s, cloth_margin_);
+      cloth_bvh_.refit(cloth_boxes_);
+      if (collider_boxes_.extent(0) > 0) collider_bvh_.refit(collider_boxes_);
+    });
     const SideMesh<Mem> cloth = cloth_side(s);
     long n = 0;
     if (self_) n += narrow(cloth, cloth, /*self*/ true, n);
     if (collider_boxes_.extent(0) > 0) n += narrow(cloth, collider_side(s), false, n);
     ncontacts_ = n;
-    offsets_ = colouring_.colour(s.exec, contacts_, n, s.w);
+    timed(stats_.seconds_contact_colouring, [&] { offsets_ = colouring_.colour(s.exec, contacts_, n, s.w); });
     stats_.contacts = n;
     stats_.colours = long(offsets_.size()) - 1;
   }
@@ -180,9 +188,18 @@ class CollisionHandler final : public CollisionStage<Exec> {
     NarrowSettings ns = ns_;
     ns.self = self;
     long npairs = 0;
-    if (self) npairs = cloth_bvh_.query_self(KeepAllPairs{}, pairs_);
-    else npairs = collider_bvh_.query(View<const Aabb*>(cloth_boxes_), KeepAllPairs{}, pairs_);
+    timed(stats_.seconds_broad_phase, [&] {
+      if (self) npairs = cloth_bvh_.query_self(KeepAllPairs{}, pairs_);
+      else npairs = collider_bvh_.query(View<const Aabb*>(cloth_boxes_), KeepAllPairs{}, pairs_);
+    });
     if (npairs == 0) return 0;
+    long total = 0;
+    timed(stats_.seconds_narrow_phase, [&] { total = narrow_pairs(A, B, ns, npairs, first); });
+    return total;
+  }
+
+  // The narrow phase proper: feature masks, their scan, contacts written at `first` on.
+  long narrow_pairs(const SideMesh<Mem>& A, const SideMesh<Mem>& B, const NarrowSettings& ns, long npairs, long first) {
     grow(masks_, npairs);
     grow(counts_, npairs);
     auto pairs = pairs_;
@@ -205,6 +222,16 @@ class CollisionHandler final : public CollisionStage<Exec> {
   }
 
  private:
+  // Runs `stage`; with profile, fenced and its wall time added to `acc`.
+  template <class F>
+  void timed(double& acc, F&& stage) {
+    if (!profile_) return stage();
+    Kokkos::fence();
+    const auto t0 = std::chrono::steady_clock::now();
+    stage();
+    Kokkos::fence();
+    acc += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
   // sin(x) for the small angle of the parallel-edge rule, from its Taylor series (no library call).
   static real sin_small(real x) {
     real term = x, s = x;
@@ -271,7 +298,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
 
  private:
   NarrowSettings ns_;
-  bool self_ = true, smoothing_ = true, failsafe_ = true;
+  bool self_ = true, smoothing_ = true, failsafe_ = true, profile_ = false;
   real epsilon_ = 0.1;
   int sweeps_ = 4;
   long ncontacts_ = 0;

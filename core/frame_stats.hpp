@@ -24,6 +24,9 @@ struct FrameStats {
   double seconds_constraints = 0, seconds_collision_passes = 0, seconds_contacts = 0, seconds_smoothing = 0,
          seconds_failsafe = 0;
   long collision_passes = 0;
+  // Inside the collision stage (with profile): the trees' build at each substep's start, and the parts of
+  // the collision passes (refit and queries, narrow phase with CCD, contact colouring).
+  double seconds_lbvh_build = 0, seconds_broad_phase = 0, seconds_narrow_phase = 0, seconds_contact_colouring = 0;
 };
 
 }  // namespace weft
