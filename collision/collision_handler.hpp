@@ -88,6 +88,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     sweeps_ = st.impact_zone_sweeps;
     failsafe_ = st.collision_failsafe;
     profile_ = st.profile;
+    substeps_ = st.substeps;
     // Cloth side.
     cloth_tris_ = upload_tris(s.triangles);
     cloth_rmask_ = upload(representative_features(s.triangles, int(s.points.size())), "weft::cloth_rmask");
@@ -126,6 +127,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   const Stats& stats() const { return stats_; }
 
   void begin_substep(const SolverState<Exec>& s, real) override {
+    if (substep_++ % substeps_ != 0) return;  // every pass refits the frame's trees first
     timed(stats_.seconds_lbvh_build, [&] {
       update_boxes(s, cloth_margin_);
       cloth_bvh_.build(cloth_boxes_);
@@ -302,6 +304,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
   real epsilon_ = 0.1;
   int sweeps_ = 4;
   long ncontacts_ = 0;
+  int substeps_ = 1;
+  long substep_ = 0;  // substeps since the handler was made (a run starts, or resumes, at a frame)
   View<int* [3]> cloth_tris_, collider_tris_, collider_nb_;
   View<uint8_t*> cloth_rmask_, collider_rmask_;
   View<real*> cloth_th_, cloth_fr_, cloth_dfr_, cloth_margin_, cloth_failsafe_margin_;
