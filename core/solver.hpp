@@ -192,7 +192,7 @@ class Solver {
   }
 
  private:
-  // Fraction of its distance a pinned point held back by the crossing fail-safe closes per substep.
+  // Fraction of its lag a pinned point held back by the crossing fail-safe closes per substep.
   static constexpr real kPinCatchUp = 0.25;
   template <class V>
   std::vector<typename V::non_const_value_type> to_host(const V& d) const {
