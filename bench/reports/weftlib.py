@@ -18,8 +18,9 @@ REPO = Path(__file__).resolve().parents[2]
 DEFAULT_WEFT = REPO / "build" / "openmp" / "bin" / "weft"
 SCENES = Path(__file__).resolve().parent / "scenes"
 
-# `weft run` prints one line per frame when stdout is not a terminal (apps/cmd_run.cpp, Progress::frame).
-FRAME_LINE = re.compile(r"^frame (\d+)\s+ke (\S+) J\s+rms speed (\S+) m/s\s+max strain (\S+)\s+(\S+) ms")
+# `weft run` prints one line per frame when stdout is not a terminal (apps/cmd_run.cpp, Progress::frame); the
+# fields between the max strain and the time (contacts, fail-safe, pin lag) are skipped.
+FRAME_LINE = re.compile(r"^frame (\d+)\s+ke (\S+) J\s+rms speed (\S+) m/s\s+max strain (\S+)\s.*?(\S+) ms$")
 NON_FINITE = re.compile(r"(\d+) points became non-finite at frame (\d+)")
 
 _T0 = time.monotonic()
