@@ -12,8 +12,8 @@
 #include "collision/representative.hpp"
 #include "core/scene.hpp"
 #include "core/solver_state.hpp"
+#include "core/stage_timer.hpp"
 
-#include <chrono>
 #include <map>
 
 namespace weft {
@@ -88,7 +88,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
     sweeps_ = st.impact_zone_sweeps;
     failsafe_ = st.collision_failsafe;
     profile_ = st.profile;
-    substeps_ = st.substeps;
     // Cloth side.
     cloth_tris_ = upload_tris(s.triangles);
     cloth_rmask_ = upload(representative_features(s.triangles, int(s.points.size())), "weft::cloth_rmask");
@@ -126,8 +125,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
 
   const Stats& stats() const { return stats_; }
 
-  void begin_substep(const SolverState<Exec>& s, real) override {
-    if (substep_++ % substeps_ != 0) return;  // every pass refits the frame's trees first
+  // The trees are built once per frame; every pass refits them first.
+  void begin_substep(const SolverState<Exec>& s, real, int substep) override {
+    if (substep != 0) return;
     timed(stats_.seconds_lbvh_build, [&] {
       update_boxes(s, cloth_margin_);
       cloth_bvh_.build(cloth_boxes_);
@@ -224,16 +224,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
   }
 
  private:
-  // Runs `stage`; with profile, fenced and its wall time added to `acc`.
   template <class F>
-  void timed(double& acc, F&& stage) {
-    if (!profile_) return stage();
-    Kokkos::fence();
-    const auto t0 = std::chrono::steady_clock::now();
-    stage();
-    Kokkos::fence();
-    acc += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  }
+  void timed(double& acc, F&& stage) { timed_stage(profile_, acc, stage); }
   // sin(x) for the small angle of the parallel-edge rule, from its Taylor series (no library call).
   static real sin_small(real x) {
     real term = x, s = x;
@@ -304,8 +296,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
   real epsilon_ = 0.1;
   int sweeps_ = 4;
   long ncontacts_ = 0;
-  int substeps_ = 1;
-  long substep_ = 0;  // substeps since the handler was made (a run starts, or resumes, at a frame)
   View<int* [3]> cloth_tris_, collider_tris_, collider_nb_;
   View<uint8_t*> cloth_rmask_, collider_rmask_;
   View<real*> cloth_th_, cloth_fr_, cloth_dfr_, cloth_margin_, cloth_failsafe_margin_;

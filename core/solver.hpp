@@ -11,6 +11,7 @@
 #include "core/scene.hpp"
 #include "core/solver_kernels.hpp"
 #include "core/solver_state.hpp"
+#include "core/stage_timer.hpp"
 
 #include <Kokkos_Core.hpp>
 #include <chrono>
@@ -131,17 +132,10 @@ class Solver {
                          kernels::FollowTargets<Mem>{kin_point_, kin_target_, targets_, targets_before_, state_.x,
                                                        kPinCatchUp});
     Kokkos::deep_copy(exec_, lambda_, 0.0);
-    if (collision_) collision_->begin_substep(state_, h);
+    if (collision_) collision_->begin_substep(state_, h, s);
     const int P = collision_ ? st_.collision_passes : 0, I = st_.iterations;
     int next_pass = 0;
-    auto timed = [this](double& acc, auto&& stage) {
-      if (!st_.profile) return stage();
-      exec_.fence();
-      const auto t0 = std::chrono::steady_clock::now();
-      stage();
-      exec_.fence();
-      acc += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    };
+    auto timed = [this](double& acc, auto&& stage) { timed_stage(st_.profile, acc, stage); };
     auto collision_pass = [&] {
       timed(prof_.seconds_collision_passes, [&] { collision_->pass(state_, h); });
       ++prof_.collision_passes;

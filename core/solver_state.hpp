@@ -22,7 +22,7 @@ template <class Exec>
 class CollisionStage {
  public:
   virtual ~CollisionStage() = default;
-  virtual void begin_substep(const SolverState<Exec>& s, real h) = 0;
+  virtual void begin_substep(const SolverState<Exec>& s, real h, int substep) = 0;  // substep: of the frame, from 0
   virtual void pass(const SolverState<Exec>& s, real h) = 0;     // detect contacts (a collision pass)
   virtual void project(const SolverState<Exec>& s, real h) = 0;  // one Gauss-Seidel sweep over contacts
   virtual void finish_positions(const SolverState<Exec>& s, real h) = 0;  // after the last iteration

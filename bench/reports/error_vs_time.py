@@ -99,9 +99,7 @@ def summarize_cache(cache, first_frame, checkpoints):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     W.add_common_args(ap, W.REPO / "bench" / "reports" / "out" / "error_vs_time")
-    g = ap.add_mutually_exclusive_group()
-    g.add_argument("--quick", dest="preset", action="store_const", const="quick", help="small CPU run (default)")
-    g.add_argument("--full", dest="preset", action="store_const", const="full", help="built-in resolutions, for a GPU")
+    W.add_preset_args(ap, "built-in resolutions, for a GPU")
     ap.add_argument("--backends", help="comma-separated, from serial,openmp,cuda (default: every backend of the binary; with --full, "
                     "all but serial)")
     ap.add_argument("--threads", type=int, help="host threads of the openmp backend (weft --threads)")

@@ -35,9 +35,7 @@ PRESETS = {
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     W.add_common_args(ap, W.REPO / "bench" / "reports" / "out" / "scaling")
-    g = ap.add_mutually_exclusive_group()
-    g.add_argument("--quick", dest="preset", action="store_const", const="quick", help="small CPU run (default)")
-    g.add_argument("--full", dest="preset", action="store_const", const="full", help="10K to 2M triangles, for a GPU")
+    W.add_preset_args(ap, "10K to 2M triangles, for a GPU")
     ap.add_argument("--backend", help="serial, openmp or cuda (default: the fastest the binary has)")
     ap.add_argument("--sweep", help="comma-separated skirt resolutions (quick 4,6,8,12; full 16,27,50,87,158,224)")
     ap.add_argument("--extra", help="comma-separated SCENE=RES scaling scenes (full: layer-drop=69,twist=48; 'none')")

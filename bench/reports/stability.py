@@ -255,9 +255,7 @@ def criteria_text(cr):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     W.add_common_args(ap, W.REPO / "bench" / "reports" / "out" / "stability")
-    g = ap.add_mutually_exclusive_group()
-    g.add_argument("--quick", dest="preset", action="store_const", const="quick", help="small CPU run (default)")
-    g.add_argument("--full", dest="preset", action="store_const", const="full", help="full resolutions, for a GPU")
+    W.add_preset_args(ap, "full resolutions, for a GPU")
     ap.add_argument("--backend", help="serial, openmp or cuda (default: the binary's fastest)")
     ap.add_argument("--threads", type=int, help="host threads of the openmp backend")
     ap.add_argument("--res-scale", type=float, help="resolution = each case's full resolution x this (quick 0.25, full 1)")

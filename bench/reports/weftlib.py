@@ -39,6 +39,13 @@ def add_common_args(p, out_default):
     p.add_argument("--out", default=str(out_default), help=f"output folder (default: {out_default})")
 
 
+def add_preset_args(p, full_help):
+    """--quick (a small CPU run, the default) or --full (`full_help`), into args.preset (None when neither)."""
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--quick", dest="preset", action="store_const", const="quick", help="small CPU run (default)")
+    g.add_argument("--full", dest="preset", action="store_const", const="full", help=full_help)
+
+
 def check_weft(path):
     w = Path(path)
     if not w.is_file() or not os.access(w, os.X_OK):
