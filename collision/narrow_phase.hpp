@@ -3,6 +3,7 @@
 // over the substep. Bits of the result: 0-2 vertex of A vs face B, 3-5 vertex of B vs face A, 6-14 edge of A
 // vs edge of B (6 + 3 ka + kb). Features sharing a point are never paired.
 #pragma once
+#include "collision/aabb.hpp"
 #include "collision/ccd.hpp"
 #include "collision/ccd_proximity.hpp"
 #include "collision/contact.hpp"
@@ -126,6 +127,32 @@ KOKKOS_INLINE_FUNCTION real face_th(const SideMesh<Mem>& F, int f) {
   return max_(F.th(F.tris(f, 0)), max_(F.th(F.tris(f, 1)), F.th(F.tris(f, 2))));
 }
 
+// The box a point sweeps over the substep.
+template <class Mem>
+KOKKOS_INLINE_FUNCTION Aabb swept_point_box(const SideMesh<Mem>& S, int v) {
+  return {vmin(S.xs(v), S.x(v)), vmax(S.xs(v), S.x(v))};
+}
+
+// The farthest apart, on any one axis, that a feature pair of separation r can be and still make a contact:
+// the proximity test reaches detect_scale r, the CCD r (a CCD box whose corners are farther apart on one
+// axis than its separation plus their rounding is dropped at once). The relative and absolute pads cover
+// the rounding of the box gaps and of the squared distances.
+KOKKOS_INLINE_FUNCTION real feature_reach(real r, real detect_scale) {
+  return max_(detect_scale, real(1)) * r * (1 + 1e-6) + 1e-9;
+}
+
+// Boxes farther apart than m on some axis. Gaps beyond 2^400 are left to the full test, which treats
+// coordinates it cannot bound as a possible contact.
+KOKKOS_INLINE_FUNCTION bool apart(const Aabb& a, const Aabb& b, real m) {
+  constexpr real big = 0x1p400;
+  bool out = false;
+  for (int i = 0; i < 3; ++i) {
+    const real g1 = a.lo[i] - b.hi[i], g2 = b.lo[i] - a.hi[i];
+    out = out || (g1 > m && g1 < big) || (g2 > m && g2 < big);
+  }
+  return out;
+}
+
 }  // namespace narrow_detail
 
 // Which feature pairs of triangles A (side SA) and B (side SB) are in contact.
@@ -138,26 +165,38 @@ KOKKOS_INLINE_FUNCTION uint32_t feature_mask(const SideMesh<Mem>& SA, int A, con
   const int ta[3] = {SA.tris(A, 0), SA.tris(A, 1), SA.tris(A, 2)};
   const int tb[3] = {SB.tris(B, 0), SB.tris(B, 1), SB.tris(B, 2)};
   const uint8_t ra = SA.rmask(A), rb = SB.rmask(B);
+  // Swept boxes of the corners: most feature pairs of a candidate triangle pair are too far apart on some
+  // axis to touch, and skipping them spares their distance computations (the result is the same).
+  const Aabb va[3] = {swept_point_box(SA, ta[0]), swept_point_box(SA, ta[1]), swept_point_box(SA, ta[2])};
+  const Aabb vb[3] = {swept_point_box(SB, tb[0]), swept_point_box(SB, tb[1]), swept_point_box(SB, tb[2])};
+  const Aabb boxA = merge(merge(va[0], va[1]), va[2]), boxB = merge(merge(vb[0], vb[1]), vb[2]);
+  const real thA = face_th(SA, A), thB = face_th(SB, B);
   for (int k = 0; k < 3; ++k) {
     if ((ra >> k) & 1) {
       const int p = ta[k];
-      if (!(same && (p == tb[0] || p == tb[1] || p == tb[2])) && vf_hit(SA, p, SB, B, SA.th(p) + face_th(SB, B), s))
+      const real r = SA.th(p) + thB;
+      if (!(same && (p == tb[0] || p == tb[1] || p == tb[2])) && !apart(va[k], boxB, feature_reach(r, s.detect_scale)) &&
+          vf_hit(SA, p, SB, B, r, s))
         m |= 1u << k;
     }
     if ((rb >> k) & 1) {
       const int p = tb[k];
-      if (!(same && (p == ta[0] || p == ta[1] || p == ta[2])) && vf_hit(SB, p, SA, A, SB.th(p) + face_th(SA, A), s))
+      const real r = SB.th(p) + thA;
+      if (!(same && (p == ta[0] || p == ta[1] || p == ta[2])) && !apart(vb[k], boxA, feature_reach(r, s.detect_scale)) &&
+          vf_hit(SB, p, SA, A, r, s))
         m |= 1u << (3 + k);
     }
   }
   for (int ka = 0; ka < 3; ++ka) {
     if (!((ra >> (3 + ka)) & 1)) continue;
     const int a0 = ta[ka], a1 = ta[(ka + 1) % 3];
+    const Aabb ea = merge(va[ka], va[(ka + 1) % 3]);
     for (int kb = 0; kb < 3; ++kb) {
       if (!((rb >> (3 + kb)) & 1)) continue;
       const int b0 = tb[kb], b1 = tb[(kb + 1) % 3];
       if (same && shares(a0, a1, b0, b1)) continue;
       const real r = max_(SA.th(a0), SA.th(a1)) + max_(SB.th(b0), SB.th(b1));
+      if (apart(ea, merge(vb[kb], vb[(kb + 1) % 3]), feature_reach(r, s.ee_detect_scale))) continue;
       if (ee_hit(SA, a0, a1, SB, b0, b1, r, s)) m |= 1u << (6 + 3 * ka + kb);
     }
   }
