@@ -172,9 +172,9 @@ class ContactColouring {
     Kokkos::parallel_for("weft::contact_keys", Kokkos::RangePolicy<Exec>(exec, 0, n), ColourKeys<Mem>{colour_, kv, ov});
     radix_sort_pairs(exec, kv, ov, 48);  // colour < 2^16 above a 32-bit index
     Kokkos::parallel_for("weft::contact_gather", Kokkos::RangePolicy<Exec>(exec, 0, n), Gather<Mem>{contacts, sorted_, ov});
-    Kokkos::View<long*, Mem> first(Kokkos::view_alloc(exec, std::string("weft::colour_first")), rounds + 1);
-    Kokkos::parallel_for("weft::colour_bounds", Kokkos::RangePolicy<Exec>(exec, 0, n), ColourBounds<Mem>{kv, first, n});
-    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), first);
+    grow(first_, rounds + 1);
+    Kokkos::parallel_for("weft::colour_bounds", Kokkos::RangePolicy<Exec>(exec, 0, n), ColourBounds<Mem>{kv, first_, n});
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), Kokkos::subview(first_, std::make_pair(0L, long(rounds + 1))));
     // Every round colours at least one contact until none is left (the largest key always wins), so the
     // colours are 0..k-1 with first(k) = n; the batch's last rounds may have found nothing to colour.
     int colours = 1;
@@ -183,6 +183,9 @@ class ContactColouring {
     std::swap(contacts, sorted_);
     return offsets;
   }
+
+  // The colour ranges of the last colour() on the device: first(c) .. first(c + 1).
+  const Kokkos::View<long*, Mem>& colour_first() const { return first_; }
 
  private:
   template <class V>
@@ -193,7 +196,7 @@ class ContactColouring {
   Kokkos::View<int*, Mem> colour_{"weft::jp_colour", 0};
   Kokkos::View<uint32_t*, Mem> order_{"weft::jp_order", 0}, todo_{"weft::jp_todo", 0},
       spare_{"weft::jp_spare", 0};
-  Kokkos::View<long*, Mem> next_{"weft::jp_next", 0};
+  Kokkos::View<long*, Mem> next_{"weft::jp_next", 0}, first_{"weft::colour_first", 0};
   Kokkos::View<Contact*, Mem> sorted_{"weft::contacts_sorted", 0};
 };
 
