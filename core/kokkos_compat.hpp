@@ -1,6 +1,7 @@
 // Every difference between Kokkos 3.4 and 4.x/5.x that weft touches lives here.
 #pragma once
 #include <Kokkos_Core.hpp>
+#include <Kokkos_Graph.hpp>
 
 #include <string>
 
@@ -37,6 +38,17 @@ int concurrency() {
 #else
   return Exec::concurrency();
 #endif
+}
+
+// Kernel graphs (CUDA graphs on the device; the host backends run the nodes in order). Kokkos 3.4's
+// CUDA implementation needs scripts/kokkos/*.patch under CUDA 12 and later.
+template <class Exec>
+using Graph = Kokkos::Experimental::Graph<Exec>;
+template <class Exec>
+using GraphNode = Kokkos::Experimental::GraphNodeRef<Exec>;
+template <class Exec, class Closure>
+Graph<Exec> create_graph(const Exec& exec, Closure&& c) {
+  return Kokkos::Experimental::create_graph(exec, std::forward<Closure>(c));
 }
 
 }  // namespace weft::compat

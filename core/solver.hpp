@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/frame_stats.hpp"
 #include "core/hash.hpp"
+#include "core/kokkos_compat.hpp"
 #include "core/reduce.hpp"
 #include "core/scene.hpp"
 #include "core/solver_kernels.hpp"
@@ -16,6 +17,7 @@
 #include <Kokkos_Core.hpp>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace weft {
@@ -156,16 +158,23 @@ class Solver {
     if (collision_) timed(prof_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });
   }
 
+  // One Gauss-Seidel sweep: a kernel per colour, recorded once as a graph, so that on the device a sweep
+  // is one graph launch instead of one launch per colour (the host backends run the same kernels in turn).
   void gauss_seidel_sweep(real h) {
-    auto rows = rows_;
-    auto lambda = lambda_;
-    auto x = state_.x, xs = state_.x_start;
-    auto w = state_.w;
-    const RowContext<Mem> ctx{targets_, state_.collider_x};
-    for (size_t c = 0; c + 1 < colour_offset_.size(); ++c)
-      Kokkos::parallel_for("weft::project_colour",
-                           Kokkos::RangePolicy<Exec>(exec_, colour_offset_[c], colour_offset_[c + 1]),
-                           kernels::ProjectRows<Mem>{rows, x, xs, w, lambda, ctx, h});
+    if (colour_offset_.size() < 2) return;
+    if (!sweep_ || sweep_h_ != h) {
+      const kernels::ProjectRows<Mem> f{rows_, state_.x, state_.x_start, state_.w, lambda_,
+                                        RowContext<Mem>{targets_, state_.collider_x}, h};
+      sweep_.reset();
+      sweep_.emplace(compat::create_graph(exec_, [&](const compat::GraphNode<Exec>& root) {
+        compat::GraphNode<Exec> node = root;
+        for (size_t c = 0; c + 1 < colour_offset_.size(); ++c)
+          node = node.then_parallel_for("weft::project_colour",
+                                        Kokkos::RangePolicy<Exec>(exec_, colour_offset_[c], colour_offset_[c + 1]), f);
+      }));
+      sweep_h_ = h;
+    }
+    sweep_->submit();
   }
 
   // Vellum's smoothing: every row computes its correction from the same positions, and each point moves
@@ -310,6 +319,8 @@ class Solver {
   View<long*> point_slot_offset_, point_slot_;
   std::unique_ptr<CollisionStage<Exec>> collision_;
   FrameStats prof_;  // stage times of the frame in progress
+  std::optional<compat::Graph<Exec>> sweep_;  // gauss_seidel_sweep's kernels, for step h sweep_h_
+  real sweep_h_ = 0;
 };
 
 }  // namespace weft

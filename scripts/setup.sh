@@ -37,9 +37,12 @@ kver=3.4.01
 tri_tar=trilinos_13.2.0.orig.tar.gz
 tri_sha=0ddb47784ba7b8a6b9a07a4822b33be508feb4ccd54301b2a5d10c9e54524b90
 src=$cache/src/kokkos-$kver
+# Source and installs carry the hash of the patches they were made with; a changed patch rebuilds them.
+patch_id=$(cat "$here"/kokkos/*.patch | sha256sum | cut -c1-16)
 
 fetch_kokkos_source() {
-  [ -f "$src/CMakeLists.txt" ] && { say "Kokkos $kver source already at $src"; return; }
+  if [ "$(cat "$src/.weft-patch" 2>/dev/null)" = "$patch_id" ]; then say "Kokkos $kver source already at $src"; return; fi
+  rm -rf "$src"
   mkdir -p "$cache/src"
   if [ ! -f "$cache/src/$tri_tar" ]; then
     if ! grep -rqsE '^(deb-src|Types:.*deb-src)' /etc/apt/sources.list /etc/apt/sources.list.d/ ||
@@ -60,12 +63,15 @@ fetch_kokkos_source() {
   rm -rf "$src.tmp" && mkdir -p "$src.tmp"
   tar -xzf "$cache/src/$tri_tar" -C "$src.tmp" --strip-components=3 Trilinos-trilinos-release-13-2-0/packages/kokkos
   for p in "$here"/kokkos/*.patch; do patch -s -d "$src.tmp" -p1 < "$p"; done
+  echo "$patch_id" > "$src.tmp/.weft-patch"
   mv "$src.tmp" "$src"
 }
 
 build_kokkos() {  # $1 = backend
   local b=$1 prefix=$cache/kokkos-$kver-$1
-  if [ -f "$prefix/.weft-complete" ]; then say "Kokkos $kver ($b) already installed at $prefix"; return; fi
+  if [ "$(cat "$prefix/.weft-complete" 2>/dev/null)" = "$patch_id" ]; then
+    say "Kokkos $kver ($b) already installed at $prefix"; return
+  fi
   fetch_kokkos_source
   local opts=(-DKokkos_ENABLE_SERIAL=ON -DKokkos_ENABLE_OPENMP=ON -DKokkos_ENABLE_TESTS=OFF
               -DKokkos_ENABLE_EXAMPLES=OFF -DCMAKE_CXX_STANDARD=17 -DCMAKE_BUILD_TYPE=Release)
@@ -83,7 +89,7 @@ build_kokkos() {  # $1 = backend
   cmake --build "$bdir" --target install >"$cache/kokkos-$b-build.log" 2>&1 ||
     { tail -30 "$cache/kokkos-$b-build.log" >&2; exit 1; }
   cp "$src/bin/nvcc_wrapper" "$prefix/bin/" 2>/dev/null || true
-  touch "$prefix/.weft-complete"
+  echo "$patch_id" > "$prefix/.weft-complete"
   rm -rf "$bdir"
   say "Kokkos $kver ($b) installed"
 }

@@ -9,14 +9,17 @@ at the last frame; kinetic energy at the last frame and over the last quarter of
 frame: the median of the cache's per-frame wall time (`seconds`, docs/formats.md), first computed frame left out.
 
     python3 bench/reports/error_vs_time.py --quick            # small, a few minutes on a 2-core CPU
-    python3 bench/reports/error_vs_time.py --full --backends cuda,openmp   # sized for a GPU machine
+    python3 bench/reports/error_vs_time.py --full --backends cuda   # built-in resolutions: ~10 min on one H200
+    python3 bench/reports/error_vs_time.py --merge A/error_vs_time.json B/error_vs_time.json --out C
+                                                                    # one report from runs over different scenes
 
-Writes OUT/error_vs_time.csv, OUT/error_vs_time.png (log-log error against ms/frame, one curve per schedule
+Writes OUT/error_vs_time.csv, OUT/error_vs_time.json (what --merge reads), OUT/error_vs_time.png (log-log error against ms/frame, one curve per schedule
 family and backend), OUT/error_vs_time.md (the tables and the reference's settings), OUT/log.txt (every
 weft command and its output) and OUT/reference/<scene>.h5 (reused by later runs with the same settings).
 """
 import argparse
 import csv
+import json
 import math
 import sys
 from pathlib import Path
@@ -33,10 +36,11 @@ PRESETS = {
     "quick": {"res_scale": 0.25, "frames": 24, "reference": (40, 25, 2), "timeout": 90, "ref_timeout": 120,
               "families": {"substeps": [1, 2, 5, 10, 20], "iterations": [10, 20, 50, 100, 200],
                            "small-steps": [5, 20], "paper": ["paper-1", "paper-2", "paper-3"]}},
-    # GPU: the built-in resolutions, two seconds of animation, a reference 25x beyond the costliest schedule.
-    "full": {"res_scale": 1.0, "frames": 48, "reference": (200, 50, 4), "timeout": 3600, "ref_timeout": 14400,
-             "families": {"substeps": [1, 2, 5, 10, 20, 40], "iterations": [10, 20, 50, 100, 200, 400],
-                          "small-steps": [5, 10, 20, 50, 100], "paper": ["paper-1", "paper-2", "paper-3"]}},
+    # GPU: the built-in resolutions, one second of animation, a reference 20x beyond the costliest schedule in
+    # iterations per frame and 2x in substeps (about 10 minutes on one H200, twist the longest).
+    "full": {"res_scale": 1.0, "frames": 24, "reference": (100, 40, 4), "timeout": 300, "ref_timeout": 600,
+             "families": {"substeps": [1, 2, 5, 10, 20], "iterations": [10, 20, 50, 100, 200],
+                          "small-steps": [5, 10, 20, 50], "paper": ["paper-1", "paper-2", "paper-3"]}},
 }
 
 FAMILY_TITLES = {
@@ -106,17 +110,21 @@ def main():
     ap.add_argument("--scenes", default="skirt,twist,hanging-sheet", help="built-in scenes (default: %(default)s)")
     ap.add_argument("--res-scale", type=float, help="resolution = built-in default x this (quick 0.25, full 1)")
     ap.add_argument("--res", action="append", default=[], metavar="SCENE=N", help="a scene's resolution, overriding --res-scale")
-    ap.add_argument("--frames", type=int, help="frames simulated after the initial one (quick 24, full 48)")
+    ap.add_argument("--frames", type=int, help="frames simulated after the initial one (quick 24, full 24)")
     ap.add_argument("--checkpoints", help="frames compared with the reference (default: 4 evenly spaced, the last included)")
     ap.add_argument("--families", default="substeps,iterations,small-steps,paper", help="schedule families (default: %(default)s)")
-    ap.add_argument("--reference", help="reference schedule SUBSTEPS,ITERATIONS,PASSES (quick 40,25,2; full 200,50,4)")
-    ap.add_argument("--timeout", type=float, help="seconds per run before it is killed (quick 90, full 3600)")
-    ap.add_argument("--ref-timeout", type=float, help="seconds for a reference run (quick 120, full 14400); a scene "
+    ap.add_argument("--reference", help="reference schedule SUBSTEPS,ITERATIONS,PASSES (quick 40,25,2; full 100,40,4)")
+    ap.add_argument("--timeout", type=float, help="seconds per run before it is killed (quick 90, full 300)")
+    ap.add_argument("--ref-timeout", type=float, help="seconds for a reference run (quick 120, full 600); a scene "
                     "whose reference fails is skipped")
     ap.add_argument("--diverge-strain", type=float, default=5.0,
                     help="kill a run whose max strain passes this (default %(default)s); it is reported as diverged")
     ap.add_argument("--keep-caches", action="store_true", help="keep every run's cache under OUT/caches")
+    ap.add_argument("--merge", nargs="+", metavar="JSON", help="only merge the error_vs_time.json of earlier runs "
+                    "(other scenes, same frames and reference) into one report in OUT")
     a = ap.parse_args()
+    if a.merge:
+        return merge(a.merge, Path(a.out))
     preset = PRESETS[a.preset or "quick"]
     weft = W.check_weft(a.weft)
     info = W.weft_info(weft)
@@ -257,7 +265,15 @@ def main():
     log.close()
     if not rows:
         sys.exit("no results: " + "; ".join(f"{s}: {w}" for s, _, w in skipped))
+    meta = {"info": info, "weft": weft, "backends": backends, "threads": a.threads, "first": first, "last": last,
+            "checkpoints": checkpoints, "reference": [ref_s, ref_it, ref_cp], "ref_backend": ref_backend,
+            "timeout": timeout, "diverge_strain": a.diverge_strain, "skipped": skipped}
+    write_outputs(out, meta, rows)
 
+
+def write_outputs(out, meta, rows):
+    """error_vs_time.{csv,md,png}, and .json (meta and rows, for --merge)."""
+    checkpoints = meta["checkpoints"]
     cols = ["scene", "res", "points", "triangles", "backend", "family", "schedule", "substeps", "iterations",
             "collision_passes", "iterations_per_frame", "status", "frames_done", "ms_per_frame", "ms_per_frame_mean", "error_mean",
             "error_max", "error_last"] + [f"err_f{c}" for c in checkpoints] + [
@@ -267,13 +283,29 @@ def main():
         w.writeheader()
         for r in rows:
             w.writerow({k: r.get(k, "") for k in cols})
-    write_markdown(out / "error_vs_time.md", rows, info, weft, backends, a.threads, first, last, checkpoints,
-                   (ref_s, ref_it, ref_cp), ref_backend, timeout, a.diverge_strain, skipped)
-    plot(out / "error_vs_time.png", rows, first, last)
+    (out / "error_vs_time.json").write_text(json.dumps({"meta": meta, "rows": rows}, indent=1, default=float))
+    write_markdown(out / "error_vs_time.md", rows, meta["info"], meta["weft"], meta["backends"], meta["threads"],
+                   meta["first"], meta["last"], checkpoints, tuple(meta["reference"]), meta["ref_backend"],
+                   meta["timeout"], meta["diverge_strain"], [tuple(x) for x in meta["skipped"]])
+    plot(out / "error_vs_time.png", rows, meta["first"], meta["last"])
     differ = [r for r in rows if r.get("same_bits") == "NO"]
     W.progress(f"wrote {out / 'error_vs_time.csv'}, {out / 'error_vs_time.md'}, {out / 'error_vs_time.png'}")
     if differ:
         W.progress(f"WARNING: {len(differ)} runs differ bitwise between backends")
+
+
+def merge(paths, out):
+    """One report from the error_vs_time.json of runs over different scenes (same frames and reference)."""
+    parts = [json.loads(Path(p).read_text()) for p in paths]
+    meta = parts[0]["meta"]
+    for p, part in zip(paths, parts):
+        m = part["meta"]
+        if (m["first"], m["last"], m["checkpoints"], m["reference"]) != (meta["first"], meta["last"], meta["checkpoints"], meta["reference"]):
+            sys.exit(f"error: {p} has other frames, checkpoints or reference than {paths[0]}")
+    meta = dict(meta, backends=list(dict.fromkeys(b for part in parts for b in part["meta"]["backends"])),
+                skipped=[s for part in parts for s in part["meta"]["skipped"]])
+    out.mkdir(parents=True, exist_ok=True)
+    write_outputs(out, meta, [r for part in parts for r in part["rows"]])
 
 
 def write_markdown(path, rows, info, weft, backends, threads, first, last, checkpoints, ref, ref_backend, timeout, diverge,
