@@ -28,28 +28,6 @@ struct ProjectContacts {
   KOKKOS_INLINE_FUNCTION void operator()(long i) const { project_contact(c(i), x, xs, w, cx, cxs); }
 };
 
-// The small colours at the end of the colouring in one launch of one team: colour after colour, each
-// split among the team's threads, with a team barrier between colours. Contacts of a colour move disjoint
-// points, so this is the same Gauss-Seidel order as one launch per colour, without a launch per colour.
-template <class Exec>
-struct ProjectContactTail {
-  using Mem = typename Exec::memory_space;
-  using Member = typename Kokkos::TeamPolicy<Exec>::member_type;
-  Kokkos::View<Contact*, Mem> c;
-  Kokkos::View<Vec3*, Mem> x, xs;
-  Kokkos::View<real*, Mem> w;
-  Kokkos::View<Vec3*, Mem> cx, cxs;
-  Kokkos::View<long*, Mem> first;
-  int c0, c1;
-  KOKKOS_INLINE_FUNCTION void operator()(const Member& m) const {
-    for (int k = c0; k < c1; ++k) {
-      Kokkos::parallel_for(Kokkos::TeamThreadRange(m, first(k), first(k + 1)),
-                           [&](long i) { project_contact(c(i), x, xs, w, cx, cxs); });
-      m.team_barrier();
-    }
-  }
-};
-
 // Which features of each candidate triangle pair make contacts, and how many.
 template <class Mem>
 struct NarrowMask {
@@ -171,10 +149,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
     timed(stats_.seconds_contact_colouring, [&] { offsets_ = colouring_.colour(s.exec, contacts_, n, s.w); });
     stats_.contacts = n;
     stats_.colours = long(offsets_.size()) - 1;
-    // The tail: the colours from which on every colour fits a few rounds of one team.
-    const long small = kTailRounds * long(tail_team_size(s));
-    tail_begin_ = int(offsets_.size()) - 1;
-    while (tail_begin_ > 0 && offsets_[tail_begin_] - offsets_[tail_begin_ - 1] <= small) --tail_begin_;
   }
 
   void project(const SolverState<Exec>& s, real) override {
@@ -182,13 +156,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
     auto x = s.x, xs = s.x_start;
     auto w = s.w;
     auto cx = s.collider_x, cxs = s.collider_x_start;
-    for (int k = 0; k < tail_begin_; ++k)
+    for (size_t k = 0; k + 1 < offsets_.size(); ++k)
       Kokkos::parallel_for("weft::project_contacts", Kokkos::RangePolicy<Exec>(s.exec, offsets_[k], offsets_[k + 1]),
                            ProjectContacts<Mem>{c, x, xs, w, cx, cxs});
-    const int colours = int(offsets_.size()) - 1;
-    if (tail_begin_ < colours)
-      Kokkos::parallel_for("weft::project_contact_tail", Kokkos::TeamPolicy<Exec>(s.exec, 1, tail_team_size(s)),
-                           ProjectContactTail<Exec>{c, x, xs, w, cx, cxs, colouring_.colour_first(), tail_begin_, colours});
   }
 
   // The crossing fail-safe over fresh candidate pairs (boxes from x_start to the final x).
@@ -256,17 +226,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
  private:
   template <class F>
   void timed(double& acc, F&& stage) { timed_stage(profile_, acc, stage); }
-  // The tail kernel's team: as large as the backend allows for it (the result does not depend on it).
-  int tail_team_size(const SolverState<Exec>& s) {
-    if (tail_team_ == 0) {
-      const ProjectContactTail<Exec> f{contacts_, s.x, s.x_start, s.w, s.collider_x, s.collider_x_start,
-                                       colouring_.colour_first(), 0, 0};
-      tail_team_ = Kokkos::TeamPolicy<Exec>(s.exec, 1, Kokkos::AUTO).team_size_max(f, Kokkos::ParallelForTag{});
-    }
-    return tail_team_;
-  }
-  // A colour joins the tail when one team projects it in at most this many rounds.
-  static constexpr long kTailRounds = 2;
   // sin(x) for the small angle of the parallel-edge rule, from its Taylor series (no library call).
   static real sin_small(real x) {
     real term = x, s = x;
@@ -349,7 +308,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
   View<long*> counts_{"weft::counts", 0};
   View<Contact*> contacts_{"weft::contacts", 0};
   std::vector<long> offsets_{0};
-  int tail_begin_ = 0, tail_team_ = 0;  // colours tail_begin_.. are projected by ProjectContactTail
   ContactColouring<Exec> colouring_;
   ImpactZones<Exec> zones_;
   CrossingFailsafe<Exec> failsafe_run_;

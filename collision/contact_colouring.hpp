@@ -184,9 +184,6 @@ class ContactColouring {
     return offsets;
   }
 
-  // The colour ranges of the last colour() on the device: first(c) .. first(c + 1).
-  const Kokkos::View<long*, Mem>& colour_first() const { return first_; }
-
  private:
   template <class V>
   static void grow(V& v, long n) {
