@@ -9,13 +9,14 @@ at the last frame; kinetic energy at the last frame and over the last quarter of
 frame: the median of the cache's per-frame wall time (`seconds`, docs/formats.md), first computed frame left out.
 
     python3 bench/reports/error_vs_time.py --quick            # small, a few minutes on a 2-core CPU
-    python3 bench/reports/error_vs_time.py --full --backends cuda   # built-in resolutions: ~10 min on one H200
+    python3 bench/reports/error_vs_time.py --full --backends cuda   # built-in resolutions: ~5 min on one H200
     python3 bench/reports/error_vs_time.py --merge A/error_vs_time.json B/error_vs_time.json --out C
                                                                     # one report from runs over different scenes
 
-Writes OUT/error_vs_time.csv, OUT/error_vs_time.json (what --merge reads), OUT/error_vs_time.png (log-log error against ms/frame, one curve per schedule
-family and backend), OUT/error_vs_time.md (the tables and the reference's settings), OUT/log.txt (every
-weft command and its output) and OUT/reference/<scene>.h5 (reused by later runs with the same settings).
+Writes OUT/error_vs_time.csv, OUT/error_vs_time.png (log-log error against ms/frame, one curve per schedule
+family and backend), OUT/error_vs_time.md (the tables and the reference's settings), OUT/error_vs_time.json
+(what --merge reads), OUT/log.txt (every weft command and its output) and OUT/reference/<scene>.h5 (reused by
+later runs with the same settings).
 """
 import argparse
 import csv
@@ -37,7 +38,7 @@ PRESETS = {
               "families": {"substeps": [1, 2, 5, 10, 20], "iterations": [10, 20, 50, 100, 200],
                            "small-steps": [5, 20], "paper": ["paper-1", "paper-2", "paper-3"]}},
     # GPU: the built-in resolutions, one second of animation, a reference 20x beyond the costliest schedule in
-    # iterations per frame and 2x in substeps (about 10 minutes on one H200, twist the longest).
+    # iterations per frame and 2x in substeps (about 5 minutes on one H200).
     "full": {"res_scale": 1.0, "frames": 24, "reference": (100, 40, 4), "timeout": 300, "ref_timeout": 600,
              "families": {"substeps": [1, 2, 5, 10, 20], "iterations": [10, 20, 50, 100, 200],
                           "small-steps": [5, 10, 20, 50], "paper": ["paper-1", "paper-2", "paper-3"]}},
