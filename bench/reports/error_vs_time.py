@@ -285,9 +285,7 @@ def write_outputs(out, meta, rows):
         for r in rows:
             w.writerow({k: r.get(k, "") for k in cols})
     (out / "error_vs_time.json").write_text(json.dumps({"meta": meta, "rows": rows}, indent=1, default=float))
-    write_markdown(out / "error_vs_time.md", rows, meta["info"], meta["weft"], meta["backends"], meta["threads"],
-                   meta["first"], meta["last"], checkpoints, tuple(meta["reference"]), meta["ref_backend"],
-                   meta["timeout"], meta["diverge_strain"], [tuple(x) for x in meta["skipped"]])
+    write_markdown(out / "error_vs_time.md", rows, meta)
     plot(out / "error_vs_time.png", rows, meta["first"], meta["last"])
     differ = [r for r in rows if r.get("same_bits") == "NO"]
     W.progress(f"wrote {out / 'error_vs_time.csv'}, {out / 'error_vs_time.md'}, {out / 'error_vs_time.png'}")
@@ -309,9 +307,11 @@ def merge(paths, out):
     write_outputs(out, meta, [r for part in parts for r in part["rows"]])
 
 
-def write_markdown(path, rows, info, weft, backends, threads, first, last, checkpoints, ref, ref_backend, timeout, diverge,
-                   skipped):
-    s, it, cp = ref
+def write_markdown(path, rows, meta):
+    info, weft, backends, threads = meta["info"], meta["weft"], meta["backends"], meta["threads"]
+    first, last, checkpoints, ref_backend = meta["first"], meta["last"], meta["checkpoints"], meta["ref_backend"]
+    timeout, diverge, skipped = meta["timeout"], meta["diverge_strain"], meta["skipped"]
+    s, it, cp = meta["reference"]
     md = ["# Error against time per frame\n\n",
           f"weft {info['version']} (`{weft}`), backends {', '.join(backends)}"
           + (f", openmp threads {threads}" if threads else "") + f". Frames {first}-{last} (the first is the initial state); "
