@@ -8,7 +8,7 @@
 #include "collision/crossing_failsafe.hpp"
 #include "collision/impact_zone.hpp"
 #include "collision/lbvh.hpp"
-#include "collision/narrow_phase.hpp"
+#include "collision/narrow_pipeline.hpp"
 #include "collision/representative.hpp"
 #include "core/scene.hpp"
 #include "core/solver_state.hpp"
@@ -26,36 +26,6 @@ struct ProjectContacts {
   Kokkos::View<real*, Mem> w;
   Kokkos::View<Vec3*, Mem> cx, cxs;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const { project_contact(c(i), x, xs, w, cx, cxs); }
-};
-
-// Which features of each candidate triangle pair make contacts, and how many.
-template <class Mem>
-struct NarrowMask {
-  SideMesh<Mem> A, B;
-  Kokkos::View<IndexPair*, Mem> pairs;
-  Kokkos::View<uint32_t*, Mem> masks;
-  Kokkos::View<long*, Mem> counts;
-  NarrowSettings ns;
-  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
-    const uint32_t m = feature_mask(A, pairs(i).first, B, pairs(i).second, ns);
-    masks(i) = m;
-    counts(i) = popcount15(m);
-  }
-};
-
-// Writes each pair's contacts at its scanned offset.
-template <class Mem>
-struct NarrowFill {
-  SideMesh<Mem> A, B;
-  Kokkos::View<IndexPair*, Mem> pairs;
-  Kokkos::View<uint32_t*, Mem> masks;
-  Kokkos::View<long*, Mem> counts;
-  NarrowSettings ns;
-  Kokkos::View<Contact*, Mem> out;
-  long first;
-  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
-    if (masks(i)) fill_contacts(A, pairs(i).first, B, pairs(i).second, masks(i), ns, out, first + counts(i));
-  }
 };
 
 template <class Exec>
@@ -200,27 +170,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
     return total;
   }
 
-  // The narrow phase proper: feature masks, their scan, contacts written at `first` on.
+  // The narrow phase proper (collision/narrow_pipeline.hpp), contacts written at `first` on.
   long narrow_pairs(const SideMesh<Mem>& A, const SideMesh<Mem>& B, const NarrowSettings& ns, long npairs, long first) {
-    grow(masks_, npairs);
-    grow(counts_, npairs);
-    auto pairs = pairs_;
-    auto masks = masks_;
-    auto counts = counts_;
-    const Exec exec;
-    Kokkos::parallel_for("weft::narrow_mask", Kokkos::RangePolicy<Exec>(exec, 0, npairs),
-                         NarrowMask<Mem>{A, B, pairs, masks, counts, ns});
-    const long total = long(exclusive_scan(exec, Kokkos::subview(counts, std::make_pair(0L, npairs)), counts));
-    if (long(contacts_.extent(0)) < first + total) {  // grow, keeping what the self pass wrote
-      View<Contact*> bigger(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::contacts"), (first + total) * 3 / 2 + 64);
-      if (first > 0)
-        Kokkos::deep_copy(exec, Kokkos::subview(bigger, std::make_pair(0L, first)),
-                          Kokkos::subview(contacts_, std::make_pair(0L, first)));
-      contacts_ = bigger;
-    }
-    Kokkos::parallel_for("weft::narrow_fill", Kokkos::RangePolicy<Exec>(exec, 0, npairs),
-                         NarrowFill<Mem>{A, B, pairs, masks, counts, ns, contacts_, first});
-    return total;
+    return narrow_.run(Exec(), A, B, ns, pairs_, npairs, contacts_, first);
   }
 
  private:
@@ -262,10 +214,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
       }
     return upload_tris(nb);
   }
-  template <class V>
-  static void grow(V& v, long n) {
-    if (long(v.extent(0)) < n) v = V(Kokkos::view_alloc(Kokkos::WithoutInitializing, v.label()), n + n / 2 + 16);
-  }
 
  public:  // kernels below launch device lambdas, which CUDA allows only in public member functions
   // Swept boxes from x_start to x: cloth boxes inflated by `cloth_margin` (per triangle), collider boxes by
@@ -304,10 +252,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
   View<Aabb*> cloth_boxes_, collider_boxes_;
   Lbvh<Exec> cloth_bvh_, collider_bvh_;
   View<IndexPair*> pairs_{"weft::pairs", 0}, collider_pairs_{"weft::collider_pairs", 0};
-  View<uint32_t*> masks_{"weft::masks", 0};
-  View<long*> counts_{"weft::counts", 0};
   View<Contact*> contacts_{"weft::contacts", 0};
   std::vector<long> offsets_{0};
+  NarrowPipeline<Exec> narrow_;
   ContactColouring<Exec> colouring_;
   ImpactZones<Exec> zones_;
   CrossingFailsafe<Exec> failsafe_run_;

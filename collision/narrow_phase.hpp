@@ -54,14 +54,13 @@ namespace narrow_detail {
 
 KOKKOS_INLINE_FUNCTION bool shares(int a, int b, int c, int d) { return a == c || a == d || b == c || b == d; }
 
-// The minimum separation of a pair's CCD. A pair that starts the substep farther apart than the proximity
-// reach must not come within r (the two thicknesses). A pair already in contact at the start is held by
-// its proximity contact, so its CCD only has to catch a crossing (separation 0): CCD with separation r on
-// a pair that rests at distance r is degenerate (|F| ~ r over a whole region of the parameter box), and
+// Whether a pair's CCD runs with separation 0. A pair that starts the substep farther apart than the
+// proximity reach must not come within r (the two thicknesses). A pair already in contact at the start is
+// held by its proximity contact, so its CCD only has to catch a crossing (separation 0): CCD with separation
+// r on a pair that rests at distance r is degenerate (|F| ~ r over a whole region of the parameter box), and
 // resting layers would exhaust the search on every pair.
-KOKKOS_INLINE_FUNCTION real ccd_separation(real d0, real r, const NarrowSettings& s) {
-  return d0 < s.detect_scale * r ? real(0) : r;
-}
+KOKKOS_INLINE_FUNCTION bool touching(real d0, real r, const NarrowSettings& s) { return d0 < s.detect_scale * r; }
+
 // A point whose closest point on face f lies on an edge or a corner of f has the same closest point on
 // every face around that edge or corner: only the feature's representative triangle keeps the proximity
 // contact, so a point resting over a vertex of the next layer makes one contact, not six.
@@ -78,24 +77,36 @@ KOKKOS_INLINE_FUNCTION CcdSettings ccd_settings(real r, const NarrowSettings& s)
   return CcdSettings{max_(s.ccd.tolerance, s.ccd_tolerance_scale * r), s.ccd.max_iterations};
 }
 
+// The outcomes of a feature pair's cheap tests: decided (no contact, contact), or left to the CCD with
+// separation r (kCcd) or 0 (kCcdTouching, see touching()).
+enum FeatureTest : int { kMiss = 0, kHit = 1, kCcd = 2, kCcdTouching = 3 };
+
 template <class Mem>
-KOKKOS_INLINE_FUNCTION bool vf_hit(const SideMesh<Mem>& P, int p, const SideMesh<Mem>& F, int f, real r,
+KOKKOS_INLINE_FUNCTION int vf_test(const SideMesh<Mem>& P, int p, const SideMesh<Mem>& F, int f, real r,
                                    const NarrowSettings& s) {
   const int a = F.tris(f, 0), b = F.tris(f, 1), c = F.tris(f, 2);
   real u, v, w;
   const real d2 = point_triangle_distance2(P.x(p), F.x(a), F.x(b), F.x(c), u, v, w);
   const real lim = s.detect_scale * r;
   // A face that does not own the closest feature still needs a contact if the point crosses it (a fold
-  // at that edge or corner): the CCD below decides.
-  if (d2 < lim * lim && owns_closest_feature(F, f, u, v, w)) return true;
+  // at that edge or corner): the CCD decides.
+  if (d2 < lim * lim && owns_closest_feature(F, f, u, v, w)) return kHit;
   // Linear motion moves the point-triangle vector by at most the largest relative displacement of p
   // against a corner, so a pair that starts farther apart than that plus the CCD separation cannot touch.
   const Vec3 dp = P.x(p) - P.xs(p);
   const real D = sqrt_(max_(norm2(dp - (F.x(a) - F.xs(a))), max_(norm2(dp - (F.x(b) - F.xs(b))), norm2(dp - (F.x(c) - F.xs(c))))));
   const real d0 = sqrt_(point_triangle_distance2(P.xs(p), F.xs(a), F.xs(b), F.xs(c), u, v, w));
-  const real ms = ccd_separation(d0, r, s);
-  if (d0 - D > ms + 1e-9 * (1 + d0)) return false;
-  return ccd_vertex_face(P.xs(p), F.xs(a), F.xs(b), F.xs(c), P.x(p), F.x(a), F.x(b), F.x(c), ms, ccd_settings(r, s)).hit;
+  const bool t = touching(d0, r, s);
+  if (d0 - D > (t ? real(0) : r) + 1e-9 * (1 + d0)) return kMiss;
+  return t ? kCcdTouching : kCcd;
+}
+
+template <class Mem>
+KOKKOS_INLINE_FUNCTION bool vf_ccd(const SideMesh<Mem>& P, int p, const SideMesh<Mem>& F, int f, real r, bool t,
+                                   const NarrowSettings& s) {
+  const int a = F.tris(f, 0), b = F.tris(f, 1), c = F.tris(f, 2);
+  return ccd_vertex_face(P.xs(p), F.xs(a), F.xs(b), F.xs(c), P.x(p), F.x(a), F.x(b), F.x(c), t ? real(0) : r,
+                         ccd_settings(r, s)).hit;
 }
 
 KOKKOS_INLINE_FUNCTION bool not_parallel(Vec3 ea, Vec3 eb, real min_sin) {
@@ -104,22 +115,29 @@ KOKKOS_INLINE_FUNCTION bool not_parallel(Vec3 ea, Vec3 eb, real min_sin) {
 }
 
 template <class Mem>
-KOKKOS_INLINE_FUNCTION bool ee_hit(const SideMesh<Mem>& A, int a0, int a1, const SideMesh<Mem>& B, int b0, int b1,
+KOKKOS_INLINE_FUNCTION int ee_test(const SideMesh<Mem>& A, int a0, int a1, const SideMesh<Mem>& B, int b0, int b1,
                                    real r, const NarrowSettings& s) {
   if (s.self && !(not_parallel(A.x(a1) - A.x(a0), B.x(b1) - B.x(b0), s.min_sin_angle) &&
                   not_parallel(A.xs(a1) - A.xs(a0), B.xs(b1) - B.xs(b0), s.min_sin_angle)))
-    return false;
+    return kMiss;
   real sa, tb;
   const real d2 = segment_segment_distance2(A.x(a0), A.x(a1), B.x(b0), B.x(b1), sa, tb);
   const real lim = s.ee_detect_scale * r;
-  if (d2 < lim * lim) return true;
-  // The same bound as vf_hit: the closest-point vector moves by at most the largest relative displacement.
+  if (d2 < lim * lim) return kHit;
+  // The same bound as vf_test: the closest-point vector moves by at most the largest relative displacement.
   const Vec3 da0 = A.x(a0) - A.xs(a0), da1 = A.x(a1) - A.xs(a1), db0 = B.x(b0) - B.xs(b0), db1 = B.x(b1) - B.xs(b1);
   const real D = sqrt_(max_(max_(norm2(da0 - db0), norm2(da0 - db1)), max_(norm2(da1 - db0), norm2(da1 - db1))));
   const real d0 = sqrt_(segment_segment_distance2(A.xs(a0), A.xs(a1), B.xs(b0), B.xs(b1), sa, tb));
-  const real ms = ccd_separation(d0, r, s);
-  if (d0 - D > ms + 1e-9 * (1 + d0)) return false;
-  return ccd_edge_edge(A.xs(a0), A.xs(a1), B.xs(b0), B.xs(b1), A.x(a0), A.x(a1), B.x(b0), B.x(b1), ms, ccd_settings(r, s)).hit;
+  const bool t = touching(d0, r, s);
+  if (d0 - D > (t ? real(0) : r) + 1e-9 * (1 + d0)) return kMiss;
+  return t ? kCcdTouching : kCcd;
+}
+
+template <class Mem>
+KOKKOS_INLINE_FUNCTION bool ee_ccd(const SideMesh<Mem>& A, int a0, int a1, const SideMesh<Mem>& B, int b0, int b1,
+                                   real r, bool t, const NarrowSettings& s) {
+  return ccd_edge_edge(A.xs(a0), A.xs(a1), B.xs(b0), B.xs(b1), A.x(a0), A.x(a1), B.x(b0), B.x(b1), t ? real(0) : r,
+                       ccd_settings(r, s)).hit;
 }
 
 template <class Mem>
@@ -155,19 +173,32 @@ KOKKOS_INLINE_FUNCTION bool apart(const Aabb& a, const Aabb& b, real m) {
 
 }  // namespace narrow_detail
 
-// Which feature pairs of triangles A (side SA) and B (side SB) are in contact.
+// The cheap tests of the feature pairs of triangles A (side SA) and B (side SB), as bit masks (bits as at
+// the top of this file): contacts decided already, and pairs only the CCD can decide (feature_ccd), with
+// `touching` set for those whose CCD runs with separation 0. The CCD is left out so that it runs on a
+// compacted list (collision/narrow_pipeline.hpp): inlined here, its registers and its long, uneven
+// searches held every pair's thread back on the GPU.
+struct FeatureTests {
+  uint32_t hit = 0, ccd = 0, touching = 0;
+};
+
 template <class Mem>
-KOKKOS_INLINE_FUNCTION uint32_t feature_mask(const SideMesh<Mem>& SA, int A, const SideMesh<Mem>& SB, int B,
-                                             const NarrowSettings& s) {
+KOKKOS_INLINE_FUNCTION FeatureTests feature_tests(const SideMesh<Mem>& SA, int A, const SideMesh<Mem>& SB, int B,
+                                                  const NarrowSettings& s) {
   using namespace narrow_detail;
   const bool same = !SA.collider && !SB.collider;  // both cloth: shared points possible
-  uint32_t m = 0;
+  FeatureTests m;
+  const auto record = [&m](int bit, int outcome) {
+    if (outcome == kHit) m.hit |= 1u << bit;
+    if (outcome >= kCcd) m.ccd |= 1u << bit;
+    if (outcome == kCcdTouching) m.touching |= 1u << bit;
+  };
   const int ta[3] = {SA.tris(A, 0), SA.tris(A, 1), SA.tris(A, 2)};
   const int tb[3] = {SB.tris(B, 0), SB.tris(B, 1), SB.tris(B, 2)};
   const uint8_t ra = SA.rmask(A), rb = SB.rmask(B);
   // Swept boxes of the corners: most feature pairs of a candidate triangle pair are too far apart on some
   // axis to touch, and skipping them spares their distance computations (the result is the same). On the
-  // host this makes the narrow phase a third faster; on the GPU the extra registers make it 10-17% slower
+  // host this makes the narrow phase a third faster; on the GPU the extra registers made it 10-17% slower
   // (H200, skirt at 300K triangles), so there every feature pair takes the full test.
   constexpr bool boxes = Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
   const Aabb va[3] = {swept_point_box(SA, ta[0]), swept_point_box(SA, ta[1]), swept_point_box(SA, ta[2])};
@@ -178,16 +209,14 @@ KOKKOS_INLINE_FUNCTION uint32_t feature_mask(const SideMesh<Mem>& SA, int A, con
     if ((ra >> k) & 1) {
       const int p = ta[k];
       const real r = SA.th(p) + thB;
-      if (!(same && (p == tb[0] || p == tb[1] || p == tb[2])) && !(boxes && apart(va[k], boxB, feature_reach(r, s.detect_scale))) &&
-          vf_hit(SA, p, SB, B, r, s))
-        m |= 1u << k;
+      if (!(same && (p == tb[0] || p == tb[1] || p == tb[2])) && !(boxes && apart(va[k], boxB, feature_reach(r, s.detect_scale))))
+        record(k, vf_test(SA, p, SB, B, r, s));
     }
     if ((rb >> k) & 1) {
       const int p = tb[k];
       const real r = SB.th(p) + thA;
-      if (!(same && (p == ta[0] || p == ta[1] || p == ta[2])) && !(boxes && apart(vb[k], boxA, feature_reach(r, s.detect_scale))) &&
-          vf_hit(SB, p, SA, A, r, s))
-        m |= 1u << (3 + k);
+      if (!(same && (p == ta[0] || p == ta[1] || p == ta[2])) && !(boxes && apart(vb[k], boxA, feature_reach(r, s.detect_scale))))
+        record(3 + k, vf_test(SB, p, SA, A, r, s));
     }
   }
   for (int ka = 0; ka < 3; ++ka) {
@@ -200,10 +229,29 @@ KOKKOS_INLINE_FUNCTION uint32_t feature_mask(const SideMesh<Mem>& SA, int A, con
       if (same && shares(a0, a1, b0, b1)) continue;
       const real r = max_(SA.th(a0), SA.th(a1)) + max_(SB.th(b0), SB.th(b1));
       if (boxes && apart(ea, merge(vb[kb], vb[(kb + 1) % 3]), feature_reach(r, s.ee_detect_scale))) continue;
-      if (ee_hit(SA, a0, a1, SB, b0, b1, r, s)) m |= 1u << (6 + 3 * ka + kb);
+      record(6 + 3 * ka + kb, ee_test(SA, a0, a1, SB, b0, b1, r, s));
     }
   }
   return m;
+}
+
+// The CCD of one feature pair (its bit) that feature_tests left open: whether it is a contact.
+template <class Mem>
+KOKKOS_INLINE_FUNCTION bool feature_ccd(const SideMesh<Mem>& SA, int A, const SideMesh<Mem>& SB, int B, int bit,
+                                        bool touching, const NarrowSettings& s) {
+  using namespace narrow_detail;
+  if (bit < 3) {
+    const int p = SA.tris(A, bit);
+    return vf_ccd(SA, p, SB, B, SA.th(p) + face_th(SB, B), touching, s);
+  }
+  if (bit < 6) {
+    const int p = SB.tris(B, bit - 3);
+    return vf_ccd(SB, p, SA, A, SB.th(p) + face_th(SA, A), touching, s);
+  }
+  const int ka = (bit - 6) / 3, kb = (bit - 6) % 3;
+  const int a0 = SA.tris(A, ka), a1 = SA.tris(A, (ka + 1) % 3), b0 = SB.tris(B, kb), b1 = SB.tris(B, (kb + 1) % 3);
+  const real r = max_(SA.th(a0), SA.th(a1)) + max_(SB.th(b0), SB.th(b1));
+  return ee_ccd(SA, a0, a1, SB, b0, b1, r, touching, s);
 }
 
 namespace narrow_detail {

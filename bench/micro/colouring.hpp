@@ -42,19 +42,11 @@ BENCHMARK(colour_rows_host)->Apply(weft::bench::triangles);
 // The narrow phase's contacts of the layers, written once.
 struct ContactsFixture {
   weft::bench::ClothLayers<Exec> layers;
-  Kokkos::View<weft::Contact*, Mem> contacts;
+  Kokkos::View<weft::Contact*, Mem> contacts{"bench::contacts", 0};
   long n = 0;
   explicit ContactsFixture(long triangles) : layers(triangles) {
-    const long np = layers.npairs;
-    Kokkos::View<uint32_t*, Mem> masks("bench::masks", np);
-    Kokkos::View<long*, Mem> counts("bench::counts", np);
-    const auto side = layers.side();
-    Kokkos::parallel_for("bench::narrow_mask", Kokkos::RangePolicy<Exec>(layers.exec, 0, np),
-                         weft::NarrowMask<Mem>{side, side, layers.pairs, masks, counts, layers.ns});
-    n = long(weft::exclusive_scan(layers.exec, counts, counts));
-    contacts = Kokkos::View<weft::Contact*, Mem>("bench::contacts", n);
-    Kokkos::parallel_for("bench::narrow_fill", Kokkos::RangePolicy<Exec>(layers.exec, 0, np),
-                         weft::NarrowFill<Mem>{side, side, layers.pairs, masks, counts, layers.ns, contacts, 0});
+    weft::NarrowPipeline<Exec> narrow;
+    n = narrow.run(layers.exec, layers.side(), layers.side(), layers.ns, layers.pairs, layers.npairs, contacts, 0);
     layers.exec.fence();
   }
 };

@@ -1,0 +1,133 @@
+// The narrow phase's kernels (collision/narrow_pipeline.hpp) give the contacts of testing each pair's
+// feature pairs one after another, CCD included, whatever the chunk size.
+#include "collision/narrow_pipeline.hpp"
+#include "collision/representative.hpp"
+
+#include <cstring>
+#include <vector>
+
+namespace {
+
+using weft::real;
+using weft::Vec3;
+
+// Two sheets of n x n quads (1 cm), the upper 5 mm above the lower and offset by a third of a cell; over the
+// substep the upper one's columns fall 4 and 8 mm in turn, so some of its features end in proximity of the
+// lower sheet and some cross it (the CCD's). Every triangle pair is a candidate.
+struct Sheets {
+  int n = 6;
+  std::vector<Vec3> xs, x;
+  std::vector<std::array<int, 3>> tris;
+  std::vector<weft::IndexPair> pairs;
+  Sheets() {
+    const int side = n + 1;
+    for (int layer = 0; layer < 2; ++layer)
+      for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+          const real shift = layer ? real(0.0033) : real(0);
+          const Vec3 p{real(0.01) * i + shift, real(0.01) * j + shift, layer ? real(0.005) : real(0)};
+          xs.push_back(p);
+          // A little shear so the motion is not the same for every point.
+          x.push_back(layer ? p + Vec3{real(0.0004) * (i % 3), real(-0.0003) * (j % 2), real(-0.004) - real(0.004) * (i % 2)} : p);
+        }
+    for (int layer = 0; layer < 2; ++layer)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const int a = layer * side * side + j * side + i;
+          tris.push_back({a, a + 1, a + side + 1});
+          tris.push_back({a, a + side + 1, a + side});
+        }
+    for (int a = 0; a < int(tris.size()); ++a)
+      for (int b = a + 1; b < int(tris.size()); ++b) pairs.push_back({a, b});
+  }
+};
+
+template <class T, class Mem>
+Kokkos::View<T*, Mem> to_view(const std::vector<T>& h, const char* label) {
+  Kokkos::View<T*, Mem> d(std::string(label), h.size());
+  auto m = Kokkos::create_mirror_view(d);
+  for (size_t i = 0; i < h.size(); ++i) m(i) = h[i];
+  Kokkos::deep_copy(d, m);
+  return d;
+}
+
+template <class Mem>
+weft::SideMesh<Mem> side_of(const Sheets& s) {
+  Kokkos::View<int* [3], Mem> tris(std::string("tris"), s.tris.size());
+  auto m = Kokkos::create_mirror_view(tris);
+  for (size_t t = 0; t < s.tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) m(t, k) = s.tris[t][k];
+  Kokkos::deep_copy(tris, m);
+  const size_t np = s.x.size();
+  weft::SideMesh<Mem> side;
+  side.x = to_view<Vec3, Mem>(s.x, "x");
+  side.xs = to_view<Vec3, Mem>(s.xs, "xs");
+  side.tris = tris;
+  side.rmask = to_view<uint8_t, Mem>(weft::representative_features(s.tris, int(np)), "rmask");
+  side.thickness = to_view<real, Mem>(std::vector<real>(np, real(0.001)), "thickness");
+  side.friction = to_view<real, Mem>(std::vector<real>(np, real(1)), "friction");
+  side.dfriction = to_view<real, Mem>(std::vector<real>(np, real(1)), "dfriction");
+  std::vector<int> layer(np);
+  for (size_t i = 0; i < np; ++i) layer[i] = i < np / 2 ? 0 : 1;
+  side.layer = to_view<int, Mem>(layer, "layer");
+  return side;
+}
+
+template <class Exec>
+std::vector<weft::Contact> narrow(const Sheets& s, long chunk, long& total) {
+  using Mem = typename Exec::memory_space;
+  const weft::SideMesh<Mem> side = side_of<Mem>(s);
+  Kokkos::View<weft::IndexPair*, Mem> pairs = to_view<weft::IndexPair, Mem>(s.pairs, "pairs");
+  Kokkos::View<weft::Contact*, Mem> contacts("contacts", 0);
+  weft::NarrowPipeline<Exec> pipeline(chunk);
+  total = pipeline.run(Exec(), side, side, weft::NarrowSettings{}, pairs, long(s.pairs.size()), contacts, 0);
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), contacts);
+  return std::vector<weft::Contact>(h.data(), h.data() + total);
+}
+
+// Field by field (the struct has padding).
+bool same_bits(const weft::Contact& a, const weft::Contact& b) {
+  const auto eq = [](const real& u, const real& v) { return std::memcmp(&u, &v, sizeof u) == 0; };
+  bool same = a.kind == b.kind && eq(a.n.x, b.n.x) && eq(a.n.y, b.n.y) && eq(a.n.z, b.n.z) && eq(a.r, b.r) &&
+              eq(a.mu_s, b.mu_s) && eq(a.mu_d, b.mu_d);
+  for (int k = 0; k < 4; ++k) same = same && a.p[k] == b.p[k] && eq(a.b[k], b.b[k]) && eq(a.wscale[k], b.wscale[k]);
+  return same;
+}
+
+// fill_contacts writes through out(i).
+struct VectorOut {
+  std::vector<weft::Contact>* v;
+  weft::Contact& operator()(long i) const { return (*v)[i]; }
+};
+
+TEST(WEFT_TEST_SUITE, narrow_phase_kernels_match_testing_pair_by_pair) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  const Sheets s;
+  // The reference: every pair's tests and CCDs in turn, on the host.
+  const weft::SideMesh<Kokkos::HostSpace> host = side_of<Kokkos::HostSpace>(s);
+  const weft::NarrowSettings ns;
+  std::vector<weft::Contact> expected;
+  long by_ccd = 0;
+  for (const weft::IndexPair& p : s.pairs) {
+    const weft::FeatureTests t = weft::feature_tests(host, p.first, host, p.second, ns);
+    uint32_t m = t.hit;
+    for (int bit = 0; bit < 15; ++bit)
+      if (((t.ccd >> bit) & 1) && weft::feature_ccd(host, p.first, host, p.second, bit, (t.touching >> bit) & 1, ns)) {
+        m |= 1u << bit;
+        ++by_ccd;
+      }
+    std::vector<weft::Contact> c(weft::popcount15(m));
+    weft::fill_contacts(host, p.first, host, p.second, m, ns, VectorOut{&c}, 0);
+    expected.insert(expected.end(), c.begin(), c.end());
+  }
+  ASSERT_GT(by_ccd, 0) << "the scene must need the CCD";
+  ASSERT_LT(by_ccd, long(expected.size())) << "and proximity";
+  for (long chunk : {1L << 23, 97L, 1L}) {
+    long total = 0;
+    const std::vector<weft::Contact> got = narrow<Exec>(s, chunk, total);
+    ASSERT_EQ(total, long(expected.size())) << "chunk " << chunk;
+    for (size_t i = 0; i < expected.size(); ++i) ASSERT_TRUE(same_bits(got[i], expected[i])) << "contact " << i << ", chunk " << chunk;
+  }
+}
+
+}  // namespace
