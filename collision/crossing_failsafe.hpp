@@ -12,7 +12,7 @@
 #pragma once
 #include "collision/ccd.hpp"
 #include "collision/lbvh.hpp"
-#include "collision/narrow_phase.hpp"
+#include "collision/narrow_pipeline.hpp"  // job_owner, kth_bit
 
 #include <Kokkos_Core.hpp>
 
@@ -49,42 +49,45 @@ KOKKOS_INLINE_FUNCTION void mark(const SideMesh<Mem>& S, int v, const Kokkos::Vi
   if (!S.collider) Kokkos::atomic_fetch_or(&flag(v), 1);
 }
 
+// The cheap part of the crossing tests: false when the pair cannot come within the tolerance over the
+// substep (it starts farther apart than the largest relative displacement of its points).
 template <class Mem>
-KOKKOS_INLINE_FUNCTION bool vf_crosses(const SideMesh<Mem>& P, int p, const SideMesh<Mem>& F, int f, real r,
-                                       const CrossingSettings& s) {
+KOKKOS_INLINE_FUNCTION bool vf_may_cross(const SideMesh<Mem>& P, int p, const SideMesh<Mem>& F, int f, real r,
+                                         const CrossingSettings& s) {
   const int a = F.tris(f, 0), b = F.tris(f, 1), c = F.tris(f, 2);
   const Vec3 dp = P.x(p) - P.xs(p);
   const real D = sqrt_(max_(norm2(dp - (F.x(a) - F.xs(a))), max_(norm2(dp - (F.x(b) - F.xs(b))), norm2(dp - (F.x(c) - F.xs(c))))));
   real u, v, w;
   const real d0 = sqrt_(point_triangle_distance2(P.xs(p), F.xs(a), F.xs(b), F.xs(c), u, v, w));
-  if (d0 - D > 1e-9 * (1 + d0) + max_(real(1e-6), s.tolerance_scale * r)) return false;
-  return ccd_vertex_face(P.xs(p), F.xs(a), F.xs(b), F.xs(c), P.x(p), F.x(a), F.x(b), F.x(c), 0, ccd_settings(r, s)).hit;
+  return !(d0 - D > 1e-9 * (1 + d0) + max_(real(1e-6), s.tolerance_scale * r));
 }
 
 template <class Mem>
-KOKKOS_INLINE_FUNCTION bool ee_crosses(const SideMesh<Mem>& A, int a0, int a1, const SideMesh<Mem>& B, int b0, int b1,
-                                       real r, const CrossingSettings& s) {
+KOKKOS_INLINE_FUNCTION bool ee_may_cross(const SideMesh<Mem>& A, int a0, int a1, const SideMesh<Mem>& B, int b0, int b1,
+                                         real r, const CrossingSettings& s) {
   const Vec3 da0 = A.x(a0) - A.xs(a0), da1 = A.x(a1) - A.xs(a1), db0 = B.x(b0) - B.xs(b0), db1 = B.x(b1) - B.xs(b1);
   const real D = sqrt_(max_(max_(norm2(da0 - db0), norm2(da0 - db1)), max_(norm2(da1 - db0), norm2(da1 - db1))));
   real sa, tb;
   const real d0 = sqrt_(segment_segment_distance2(A.xs(a0), A.xs(a1), B.xs(b0), B.xs(b1), sa, tb));
-  if (d0 - D > 1e-9 * (1 + d0) + max_(real(1e-6), s.tolerance_scale * r)) return false;
-  return ccd_edge_edge(A.xs(a0), A.xs(a1), B.xs(b0), B.xs(b1), A.x(a0), A.x(a1), B.x(b0), B.x(b1), 0, ccd_settings(r, s)).hit;
+  return !(d0 - D > 1e-9 * (1 + d0) + max_(real(1e-6), s.tolerance_scale * r));
 }
 
 // Whether a point of side S was moved back in round `round` (collider vertices never are).
 template <class Mem>
-KOKKOS_INLINE_FUNCTION bool moved_back_in(const SideMesh<Mem>& S, int v, const Kokkos::View<int*, Mem>& back, int round) {
+KOKKOS_INLINE_FUNCTION bool moved_back_in(const SideMesh<Mem>& S, int v, const Kokkos::View<const int*, Mem>& back, int round) {
   return !S.collider && back(v) == round;
 }
 
-// One round over the candidate triangle pairs: flags the cloth points of every crossing feature pair. From
-// round 1 on, only pairs with a point moved back in the previous round can have changed.
+// One round's cheap tests of a candidate triangle pair: the feature pairs (bits as in the narrow phase)
+// whose crossing only the CCD can rule out. From round 1 on, only pairs with a point moved back in the
+// previous round can have changed.
 template <class Mem>
-struct MarkCrossings {
+struct CrossingTests {
   SideMesh<Mem> A, B;
-  Kokkos::View<IndexPair*, Mem> pairs;
-  Kokkos::View<int*, Mem> back, flag;
+  Kokkos::View<const IndexPair*, Mem> pairs;
+  Kokkos::View<const int*, Mem> back;
+  Kokkos::View<uint32_t*, Mem> open;
+  Kokkos::View<long*, Mem> counts;
   int round;
   bool self, all;
   CrossingSettings cs;
@@ -92,43 +95,71 @@ struct MarkCrossings {
     const int ta_i = pairs(i).first, tb_i = pairs(i).second;
     const int ta[3] = {A.tris(ta_i, 0), A.tris(ta_i, 1), A.tris(ta_i, 2)};
     const int tb[3] = {B.tris(tb_i, 0), B.tris(tb_i, 1), B.tris(tb_i, 2)};
-    if (!all) {
-      bool changed = false;
-      for (int k = 0; k < 3; ++k)
-        changed = changed || moved_back_in(A, ta[k], back, round - 1) || moved_back_in(B, tb[k], back, round - 1);
-      if (!changed) return;
+    uint32_t o = 0;
+    bool changed = all;
+    for (int k = 0; k < 3; ++k)
+      changed = changed || moved_back_in(A, ta[k], back, round - 1) || moved_back_in(B, tb[k], back, round - 1);
+    if (changed) {
+      const uint8_t ra = A.rmask(ta_i), rb = B.rmask(tb_i);
+      const real fa = narrow_detail::face_th(A, ta_i), fb = narrow_detail::face_th(B, tb_i);
+      for (int k = 0; k < 3; ++k) {
+        const int p = ta[k], q = tb[k];
+        if (((ra >> k) & 1) && !(self && (p == tb[0] || p == tb[1] || p == tb[2])) && vf_may_cross(A, p, B, tb_i, A.th(p) + fb, cs))
+          o |= 1u << k;
+        if (((rb >> k) & 1) && !(self && (q == ta[0] || q == ta[1] || q == ta[2])) && vf_may_cross(B, q, A, ta_i, B.th(q) + fa, cs))
+          o |= 1u << (3 + k);
+      }
+      for (int ka = 0; ka < 3; ++ka) {
+        if (!((ra >> (3 + ka)) & 1)) continue;
+        const int a0 = ta[ka], a1 = ta[(ka + 1) % 3];
+        for (int kb = 0; kb < 3; ++kb) {
+          if (!((rb >> (3 + kb)) & 1)) continue;
+          const int b0 = tb[kb], b1 = tb[(kb + 1) % 3];
+          if (self && narrow_detail::shares(a0, a1, b0, b1)) continue;
+          const real r = max_(A.th(a0), A.th(a1)) + max_(B.th(b0), B.th(b1));
+          if (ee_may_cross(A, a0, a1, B, b0, b1, r, cs)) o |= 1u << (6 + 3 * ka + kb);
+        }
+      }
     }
-    const uint8_t ra = A.rmask(ta_i), rb = B.rmask(tb_i);
-    const real fa = narrow_detail::face_th(A, ta_i), fb = narrow_detail::face_th(B, tb_i);
-    for (int k = 0; k < 3; ++k) {
-      if ((ra >> k) & 1) {
-        const int p = ta[k];
-        if (!(self && (p == tb[0] || p == tb[1] || p == tb[2])) && vf_crosses(A, p, B, tb_i, A.th(p) + fb, cs)) {
-          mark(A, p, flag);
-          for (int j = 0; j < 3; ++j) mark(B, tb[j], flag);
-        }
+    open(i) = o;
+    counts(i) = popcount15(o);
+  }
+};
+
+// The crossing CCD of one open feature pair (job j, as in the narrow phase); a crossing flags the cloth
+// points of both features.
+template <class Mem>
+struct CrossingCcd {
+  SideMesh<Mem> A, B;
+  Kokkos::View<const IndexPair*, Mem> pairs;
+  Kokkos::View<const uint32_t*, Mem> open;
+  Kokkos::View<const long*, Mem> offsets;
+  long npairs;
+  Kokkos::View<int*, Mem> flag;
+  CrossingSettings cs;
+  KOKKOS_INLINE_FUNCTION void operator()(long j) const {
+    const long i = narrow_detail::job_owner(offsets, npairs, j);
+    const int bit = narrow_detail::kth_bit(open(i), j - offsets(i));
+    const int fa = pairs(i).first, fb = pairs(i).second;
+    if (bit < 6) {  // vertex p of side P against face f of side F
+      const bool a_vertex = bit < 3;
+      const SideMesh<Mem>& P = a_vertex ? A : B;
+      const SideMesh<Mem>& F = a_vertex ? B : A;
+      const int f = a_vertex ? fb : fa, p = P.tris(a_vertex ? fa : fb, bit % 3);
+      const int a = F.tris(f, 0), b = F.tris(f, 1), c = F.tris(f, 2);
+      const real r = P.th(p) + narrow_detail::face_th(F, f);
+      if (ccd_vertex_face(P.xs(p), F.xs(a), F.xs(b), F.xs(c), P.x(p), F.x(a), F.x(b), F.x(c), 0, ccd_settings(r, cs)).hit) {
+        mark(P, p, flag);
+        mark(F, a, flag); mark(F, b, flag); mark(F, c, flag);
       }
-      if ((rb >> k) & 1) {
-        const int p = tb[k];
-        if (!(self && (p == ta[0] || p == ta[1] || p == ta[2])) && vf_crosses(B, p, A, ta_i, B.th(p) + fa, cs)) {
-          mark(B, p, flag);
-          for (int j = 0; j < 3; ++j) mark(A, ta[j], flag);
-        }
-      }
+      return;
     }
-    for (int ka = 0; ka < 3; ++ka) {
-      if (!((ra >> (3 + ka)) & 1)) continue;
-      const int a0 = ta[ka], a1 = ta[(ka + 1) % 3];
-      for (int kb = 0; kb < 3; ++kb) {
-        if (!((rb >> (3 + kb)) & 1)) continue;
-        const int b0 = tb[kb], b1 = tb[(kb + 1) % 3];
-        if (self && narrow_detail::shares(a0, a1, b0, b1)) continue;
-        const real r = max_(A.th(a0), A.th(a1)) + max_(B.th(b0), B.th(b1));
-        if (ee_crosses(A, a0, a1, B, b0, b1, r, cs)) {
-          mark(A, a0, flag); mark(A, a1, flag);
-          mark(B, b0, flag); mark(B, b1, flag);
-        }
-      }
+    const int ka = (bit - 6) / 3, kb = (bit - 6) % 3;
+    const int a0 = A.tris(fa, ka), a1 = A.tris(fa, (ka + 1) % 3), b0 = B.tris(fb, kb), b1 = B.tris(fb, (kb + 1) % 3);
+    const real r = max_(A.th(a0), A.th(a1)) + max_(B.th(b0), B.th(b1));
+    if (ccd_edge_edge(A.xs(a0), A.xs(a1), B.xs(b0), B.xs(b1), A.x(a0), A.x(a1), B.x(b0), B.x(b1), 0, ccd_settings(r, cs)).hit) {
+      mark(A, a0, flag); mark(A, a1, flag);
+      mark(B, b0, flag); mark(B, b1, flag);
     }
   }
 };
@@ -191,12 +222,8 @@ class CrossingFailsafe {
     bool pinned = false;
     for (int round = 0;; ++round) {
       const bool all = round == 0 || pinned;
-      if (nself > 0)
-        Kokkos::parallel_for("weft::failsafe_self", Kokkos::RangePolicy<Exec>(exec, 0, nself),
-                             MarkCrossings<Mem>{cloth, cloth, self_pairs, back_, flag_, round, true, all, cs_});
-      if (ncollider > 0)
-        Kokkos::parallel_for("weft::failsafe_collider", Kokkos::RangePolicy<Exec>(exec, 0, ncollider),
-                             MarkCrossings<Mem>{cloth, collider, collider_pairs, back_, flag_, round, false, all, cs_});
+      mark_crossings(exec, cloth, cloth, self_pairs, nself, round, true, all);
+      mark_crossings(exec, cloth, collider, collider_pairs, ncollider, round, false, all);
       long counts = 0;
       Kokkos::parallel_reduce("weft::failsafe_move_back", Kokkos::RangePolicy<Exec>(exec, 0, n),
                               MoveBack<Mem>{x, xs, w, back_, flag_, round, pinned}, counts);
@@ -213,8 +240,34 @@ class CrossingFailsafe {
     }
   }
 
+  // Flags the cloth points of every crossing feature pair of pairs [0, n) between sides A and B: cheap
+  // tests per triangle pair, then the CCD of the feature pairs they leave open, one per thread (as in the
+  // narrow phase), in chunks of bounded working memory. Reads one counter per chunk back.
+  void mark_crossings(const Exec& exec, const SideMesh<Mem>& A, const SideMesh<Mem>& B, const Pairs& pairs, long n,
+                      int round, bool self, bool all) {
+    using namespace failsafe_detail;
+    for (long lo = 0; lo < n; lo += kChunk) {
+      const long m = n - lo < kChunk ? n - lo : kChunk;
+      if (long(open_.extent(0)) < m) {
+        const long size = m + m / 2 + 16 < kChunk ? m + m / 2 + 16 : kChunk;
+        open_ = Kokkos::View<uint32_t*, Mem>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::failsafe_open"), size);
+        counts_ = Kokkos::View<long*, Mem>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::failsafe_counts"), size);
+      }
+      const Kokkos::View<const IndexPair*, Mem> chunk = Kokkos::subview(pairs, std::make_pair(lo, lo + m));
+      Kokkos::parallel_for(self ? "weft::failsafe_self" : "weft::failsafe_collider", Kokkos::RangePolicy<Exec>(exec, 0, m),
+                           CrossingTests<Mem>{A, B, chunk, back_, open_, counts_, round, self, all, cs_});
+      const long njobs = long(exclusive_scan(exec, Kokkos::subview(counts_, std::make_pair(0L, m)), counts_));
+      if (njobs > 0)
+        Kokkos::parallel_for("weft::failsafe_ccd", Kokkos::RangePolicy<Exec>(exec, 0, njobs),
+                             CrossingCcd<Mem>{A, B, chunk, open_, counts_, m, flag_, cs_});
+    }
+  }
+
  private:
+  static constexpr long kChunk = 1L << 23;  // pairs per chunk, as in the narrow phase
   Kokkos::View<int*, Mem> back_, flag_;
+  Kokkos::View<uint32_t*, Mem> open_{"weft::failsafe_open", 0};
+  Kokkos::View<long*, Mem> counts_{"weft::failsafe_counts", 0};
   failsafe_detail::CrossingSettings cs_;
 };
 
