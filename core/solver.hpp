@@ -165,7 +165,8 @@ class Solver {
     if (!sweep_ || sweep_h_ != h) {
       const kernels::ProjectRows<Mem> f{rows_, state_.x, state_.x_start, state_.w, lambda_,
                                         RowContext<Mem>{targets_, state_.collider_x}, h};
-      (void)sweep_.emplace(compat::create_graph(exec_, [&](const compat::GraphNode<Exec>& root) {  // (void): the graph type is [[nodiscard]]
+      // (void): emplace returns the graph, whose type Kokkos marks [[nodiscard]].
+      (void)sweep_.emplace(compat::create_graph(exec_, [&](const compat::GraphNode<Exec>& root) {
         compat::GraphNode<Exec> node = root;
         for (size_t c = 0; c + 1 < colour_offset_.size(); ++c)
           node = node.then_parallel_for("weft::project_colour",
