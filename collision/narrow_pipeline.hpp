@@ -1,8 +1,8 @@
 // The narrow phase over a list of candidate triangle pairs, as kernels: the cheap tests of every pair's
 // feature pairs, the CCD of those left open, one feature pair per thread, then the contacts of each pair
-// written at its scanned offset. Splitting the CCD out keeps the per-pair kernel
-// small (on the H200 the kernel with the CCD inlined ran at 12% occupancy, limited by its registers) and
-// gives the CCD's long, uneven searches threads of their own. Masks are combined with an integer atomic
+// written at its scanned offset. Splitting the CCD out keeps the per-pair kernel small (on the H200 the
+// kernel with the CCD inlined ran at 12% occupancy, limited by its registers) and gives the CCD's long,
+// uneven searches threads of their own. Masks are combined with an integer atomic
 // OR, which is order-free; counts and lists are count-scan-fill: the contacts come out in pair order, and
 // the same bits, on every backend.
 #pragma once
