@@ -264,7 +264,7 @@ class CrossingFailsafe {
   }
 
  private:
-  static constexpr long kChunk = 1L << 23;  // pairs per chunk, as in the narrow phase
+  static constexpr long kChunk = 1L << 24;  // pairs per chunk, as in the narrow phase
   Kokkos::View<int*, Mem> back_, flag_;
   Kokkos::View<uint32_t*, Mem> open_{"weft::failsafe_open", 0};
   Kokkos::View<long*, Mem> counts_{"weft::failsafe_counts", 0};

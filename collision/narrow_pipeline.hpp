@@ -102,8 +102,9 @@ template <class Exec>
 class NarrowPipeline {
  public:
   using Mem = typename Exec::memory_space;
-  // chunk: pairs per chunk; the default is enough threads to fill a GPU.
-  explicit NarrowPipeline(long chunk = 1L << 23) : chunk_(chunk) {}
+  // chunk: pairs per chunk. Chunks run one after another and each CCD launch lasts as long as its slowest
+  // search, so fewer chunks are faster; 16M pairs keep the working memory near 270 MB.
+  explicit NarrowPipeline(long chunk = 1L << 24) : chunk_(chunk) {}
 
   // Contacts of pairs [0, npairs) between sides A and B, written to contacts[first...] (grown as needed,
   // keeping contacts[0, first)); returns how many. Reads two counters per chunk back to the host.
