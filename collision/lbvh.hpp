@@ -40,6 +40,7 @@ template <class Mem>
 struct LbvhNodes {
   int n = 0;
   Kokkos::View<const int*, Mem> left;            // per internal node: its first child
+  Kokkos::View<const int*, Mem> last;            // per internal node: its subtree's last leaf, in tree order
   Kokkos::View<const int*, Mem> rope;            // per node: next node after its subtree, -1 after the last
   Kokkos::View<const Aabb*, Mem> box;            // per node
   Kokkos::View<const uint32_t*, Mem> primitive;  // per leaf, in tree order
@@ -52,6 +53,25 @@ struct LbvhNodes {
     while (x >= 0) {
       if (!overlaps(box(x), q)) {
         x = rope(x);  // skip the subtree
+      } else if (x < first_leaf) {
+        x = left(x);
+      } else {
+        f(static_cast<int>(primitive(x - first_leaf)));
+        x = rope(x);
+      }
+    }
+  }
+
+  // f(j) for every primitive j whose leaf comes after leaf k in tree order and whose box overlaps q: a self
+  // query meets each overlapping pair once, from its earlier leaf, and skips the subtrees before it.
+  template <class F>
+  KOKKOS_INLINE_FUNCTION void for_each_later_overlap(int k, const Aabb& q, F&& f) const {
+    const int first_leaf = n - 1;
+    int x = n > 0 ? 0 : -1;
+    while (x >= 0) {
+      const int end = x < first_leaf ? last(x) : x - first_leaf;
+      if (end <= k || !overlaps(box(x), q)) {
+        x = rope(x);
       } else if (x < first_leaf) {
         x = left(x);
       } else {
@@ -129,7 +149,7 @@ void centre_bounds(const Exec& exec, Kokkos::View<const Aabb*, typename Exec::me
 template <class Mem>
 struct LinkNodes {
   Kokkos::View<const uint64_t*, Mem> keys;
-  Kokkos::View<int*, Mem> left, right, parent, rope;
+  Kokkos::View<int*, Mem> left, right, parent, rope, last;
   long n;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const long first_leaf = n - 1;
@@ -159,6 +179,7 @@ struct LinkNodes {
     // leaf gamma is such a subtree. Internal nodes keep their range end until FinishRopes.
     rope(first_leaf + gamma) = r;
     rope(i) = static_cast<int>(hi);
+    last(i) = static_cast<int>(hi);
   }
 };
 
@@ -184,11 +205,12 @@ void link_nodes(const Exec& exec, Kokkos::View<const uint64_t*, typename Exec::m
                 Kokkos::View<int*, typename Exec::memory_space> left,
                 Kokkos::View<int*, typename Exec::memory_space> right,
                 Kokkos::View<int*, typename Exec::memory_space> parent,
-                Kokkos::View<int*, typename Exec::memory_space> rope) {
+                Kokkos::View<int*, typename Exec::memory_space> rope,
+                Kokkos::View<int*, typename Exec::memory_space> last) {
   using Mem = typename Exec::memory_space;
   const long n = static_cast<long>(keys.extent(0));
   Kokkos::parallel_for("weft::lbvh_link", Kokkos::RangePolicy<Exec>(exec, 0, n - 1),
-                       LinkNodes<Mem>{keys, left, right, parent, rope, n});
+                       LinkNodes<Mem>{keys, left, right, parent, rope, last, n});
   Kokkos::parallel_for("weft::lbvh_ropes", Kokkos::RangePolicy<Exec>(exec, 0, n), FinishRopes<Mem>{parent, rope, n - 1});
 }
 
@@ -236,32 +258,40 @@ struct Refit {
   }
 };
 
-// Pair queries. Self: query k is leaf k in tree order (neighbouring threads traverse alike), the pair's first
-// index is that leaf's primitive i, and only pairs i < j count. Otherwise query q is the box queries(q).
+// Pair queries. Self: query k is leaf k in tree order (neighbouring threads traverse alike); it meets the
+// primitives of the later leaves that overlap it, and a pair is written as (i, j), i < j. Otherwise query q
+// is the box queries(q) against every primitive. visit(k, f) calls f(first, second) for each kept pair.
 template <class Mem, class Pred, bool Self>
 struct PairQuery {
   LbvhNodes<Mem> tree;
   Kokkos::View<const Aabb*, Mem> queries;
   Pred pred;
-  KOKKOS_INLINE_FUNCTION int first(long k) const {
-    return Self ? static_cast<int>(tree.primitive(k)) : static_cast<int>(k);
+  template <class F>
+  KOKKOS_INLINE_FUNCTION void visit(long k, F&& f) const {
+    if (Self) {
+      const int i = static_cast<int>(tree.primitive(k));
+      tree.for_each_later_overlap(static_cast<int>(k), tree.box(tree.n - 1 + k), [&](int j) {
+        const int a = i < j ? i : j, b = i < j ? j : i;
+        if (pred(a, b)) f(a, b);
+      });
+    } else {
+      const int q = static_cast<int>(k);
+      tree.for_each_overlap(queries(k), [&](int j) {
+        if (pred(q, j)) f(q, j);
+      });
+    }
   }
-  KOKKOS_INLINE_FUNCTION Aabb box(long k) const { return Self ? tree.box(tree.n - 1 + k) : queries(k); }
-  KOKKOS_INLINE_FUNCTION bool keep(int i, int j) const { return (!Self || i < j) && pred(i, j); }
 };
 
-// Counts per query into offsets(first).
+// Counts per query into offsets(k).
 template <class Mem, class Pred, bool Self>
 struct PairCount {
   PairQuery<Mem, Pred, Self> q;
   Kokkos::View<long*, Mem> offsets;
   KOKKOS_INLINE_FUNCTION void operator()(long k) const {
-    const int i = q.first(k);
     long c = 0;
-    q.tree.for_each_overlap(q.box(k), [&](int j) {
-      if (q.keep(i, j)) ++c;
-    });
-    offsets(i) = c;
+    q.visit(k, [&](int, int) { ++c; });
+    offsets(k) = c;
   }
 };
 
@@ -270,10 +300,7 @@ template <class Mem, class Pred, bool Self>
 struct PairTotal {
   PairQuery<Mem, Pred, Self> q;
   KOKKOS_INLINE_FUNCTION void operator()(long k, long& acc) const {
-    const int i = q.first(k);
-    q.tree.for_each_overlap(q.box(k), [&](int j) {
-      if (q.keep(i, j)) ++acc;
-    });
+    q.visit(k, [&](int, int) { ++acc; });
   }
 };
 
@@ -283,11 +310,8 @@ struct PairFill {
   Kokkos::View<long*, Mem> offsets;
   Kokkos::View<IndexPair*, Mem> out;
   KOKKOS_INLINE_FUNCTION void operator()(long k) const {
-    const int i = q.first(k);
-    long o = offsets(i);
-    q.tree.for_each_overlap(q.box(k), [&](int j) {
-      if (q.keep(i, j)) out(o++) = IndexPair{i, j};
-    });
+    long o = offsets(k);
+    q.visit(k, [&](int a, int b) { out(o++) = IndexPair{a, b}; });
   }
 };
 
@@ -323,7 +347,7 @@ class Lbvh {
 
   const Exec& execution_space() const { return exec_; }
   long size() const { return n_; }
-  LbvhNodes<Mem> nodes() const { return {static_cast<int>(n_), left_, rope_, box_, primitive_}; }
+  LbvhNodes<Mem> nodes() const { return {static_cast<int>(n_), left_, last_, rope_, box_, primitive_}; }
   // Primitive of each leaf in tree order: the order in which queries meet a query's overlapping primitives.
   Kokkos::View<const uint32_t*, Mem> leaf_primitives() const { return primitive_; }
 
@@ -337,6 +361,7 @@ class Lbvh {
     lbvh_detail::resize_exact(primitive_, n, "weft::lbvh_primitive");
     lbvh_detail::resize_exact(left_, internal, "weft::lbvh_left");
     lbvh_detail::resize_exact(right_, internal, "weft::lbvh_right");
+    lbvh_detail::resize_exact(last_, internal, "weft::lbvh_last");
     lbvh_detail::resize_exact(visits_, internal, "weft::lbvh_visits");
     lbvh_detail::resize_exact(parent_, nodes, "weft::lbvh_parent");
     lbvh_detail::resize_exact(rope_, nodes, "weft::lbvh_rope");
@@ -352,7 +377,7 @@ class Lbvh {
     radix_sort_pairs(exec_, keys_, primitive_, 32);
     Kokkos::parallel_for("weft::lbvh_keys", Kokkos::RangePolicy<Exec>(exec_, 0, n),
                          lbvh_detail::UniqueKeys<Mem>{keys_, primitive_});
-    lbvh_detail::link_nodes(exec_, Kokkos::View<const uint64_t*, Mem>(keys_), left_, right_, parent_, rope_);
+    lbvh_detail::link_nodes(exec_, Kokkos::View<const uint64_t*, Mem>(keys_), left_, right_, parent_, rope_, last_);
     refit(boxes);
   }
 
@@ -366,8 +391,8 @@ class Lbvh {
                          lbvh_detail::Refit<Mem>{boxes, primitive_, left_, right_, parent_, box_, visits_, n});
   }
 
-  // Pairs (i, j), i < j, of primitives whose boxes overlap and that pred(i, j) keeps; sorted by i, then by
-  // j in tree order.
+  // Pairs (i, j), i < j, of primitives whose boxes overlap and that pred(i, j) keeps, each once; sorted by
+  // the position in tree order of whichever of i and j comes first there, then by the other's.
   template <class Pred>
   long query_self(Pred pred, PairView& pairs) {
     return pairs_of<Pred, true>(n_, BoxView(), pred, pairs);
@@ -420,6 +445,7 @@ class Lbvh {
   Kokkos::View<uint64_t*, Mem> keys_;      // sorted unique keys
   Kokkos::View<uint32_t*, Mem> primitive_;  // per leaf
   Kokkos::View<int*, Mem> left_, right_;    // per internal node
+  Kokkos::View<int*, Mem> last_;            // per internal node: last leaf of its subtree
   Kokkos::View<int*, Mem> visits_;          // per internal node, refit's arrival counts
   Kokkos::View<int*, Mem> parent_, rope_;   // per node
   Kokkos::View<Aabb*, Mem> box_;            // per node

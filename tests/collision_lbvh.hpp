@@ -121,13 +121,16 @@ std::vector<uint32_t> expected_leaf_order(const std::vector<Aabb>& boxes) {
   return order;
 }
 
-// Brute force in the documented orders: by first index, then second in leaf order.
+// Brute force in the documented orders. Self: each pair from its earlier leaf, by that leaf, then the later
+// one (leaf order), written (smaller index, larger). Cross: by query, then the primitive's leaf.
 template <class Pred>
 std::vector<IndexPair> brute_self(const std::vector<Aabb>& boxes, const std::vector<uint32_t>& leaves, Pred pred) {
   std::vector<IndexPair> out;
-  for (int i = 0; i < int(boxes.size()); ++i)
-    for (uint32_t j : leaves)
-      if (i < int(j) && weft::overlaps(boxes[i], boxes[j]) && pred(i, int(j))) out.push_back({i, int(j)});
+  for (size_t k = 0; k < leaves.size(); ++k)
+    for (size_t l = k + 1; l < leaves.size(); ++l) {
+      const int i = int(std::min(leaves[k], leaves[l])), j = int(std::max(leaves[k], leaves[l]));
+      if (weft::overlaps(boxes[i], boxes[j]) && pred(i, j)) out.push_back({i, j});
+    }
   return out;
 }
 
