@@ -3,6 +3,7 @@
 // exactly the brute-force pairs, on every backend.
 #include "collision/tri_tri.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -197,9 +198,11 @@ std::vector<IndexPair> brute_self(const Mesh& m, const std::vector<uint32_t>& le
     for (int c = 0; c < 3; ++c) t(i, c) = m.tris[i][c];
   const weft::MeshTrianglesMeet<Kokkos::HostSpace> meet{x, t};
   std::vector<IndexPair> out;
-  for (int i = 0; i < int(m.tris.size()); ++i)
-    for (uint32_t j : leaves)
-      if (i < int(j) && meet(i, int(j))) out.push_back({i, int(j)});
+  for (size_t k = 0; k < leaves.size(); ++k)  // each pair from its earlier leaf, written (smaller, larger)
+    for (size_t l = k + 1; l < leaves.size(); ++l) {
+      const int i = int(std::min(leaves[k], leaves[l])), j = int(std::max(leaves[k], leaves[l]));
+      if (meet(i, j)) out.push_back({i, j});
+    }
   return out;
 }
 
