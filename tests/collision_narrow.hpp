@@ -42,42 +42,36 @@ struct Sheets {
   }
 };
 
-template <class T, class Mem>
-Kokkos::View<T*, Mem> to_view(const std::vector<T>& h, const char* label) {
-  Kokkos::View<T*, Mem> d(std::string(label), h.size());
-  auto m = Kokkos::create_mirror_view(d);
-  for (size_t i = 0; i < h.size(); ++i) m(i) = h[i];
-  Kokkos::deep_copy(d, m);
-  return d;
-}
-
-template <class Mem>
-weft::SideMesh<Mem> side_of(const Sheets& s) {
+// The sheets as one cloth side in Exec's memory.
+template <class Exec>
+weft::SideMesh<typename Exec::memory_space> side_of(const Sheets& s) {
+  using Mem = typename Exec::memory_space;
+  using weft::test::to_device;
   Kokkos::View<int* [3], Mem> tris(std::string("tris"), s.tris.size());
   auto m = Kokkos::create_mirror_view(tris);
   for (size_t t = 0; t < s.tris.size(); ++t)
     for (int k = 0; k < 3; ++k) m(t, k) = s.tris[t][k];
   Kokkos::deep_copy(tris, m);
   const size_t np = s.x.size();
-  weft::SideMesh<Mem> side;
-  side.x = to_view<Vec3, Mem>(s.x, "x");
-  side.xs = to_view<Vec3, Mem>(s.xs, "xs");
-  side.tris = tris;
-  side.rmask = to_view<uint8_t, Mem>(weft::representative_features(s.tris, int(np)), "rmask");
-  side.thickness = to_view<real, Mem>(std::vector<real>(np, real(0.001)), "thickness");
-  side.friction = to_view<real, Mem>(std::vector<real>(np, real(1)), "friction");
-  side.dfriction = to_view<real, Mem>(std::vector<real>(np, real(1)), "dfriction");
   std::vector<int> layer(np);
   for (size_t i = 0; i < np; ++i) layer[i] = i < np / 2 ? 0 : 1;
-  side.layer = to_view<int, Mem>(layer, "layer");
+  weft::SideMesh<Mem> side;
+  side.x = to_device<Exec>(s.x, "x");
+  side.xs = to_device<Exec>(s.xs, "xs");
+  side.tris = tris;
+  side.rmask = to_device<Exec>(weft::representative_features(s.tris, int(np)), "rmask");
+  side.thickness = to_device<Exec>(std::vector<real>(np, real(0.001)), "thickness");
+  side.friction = to_device<Exec>(std::vector<real>(np, real(1)), "friction");
+  side.dfriction = to_device<Exec>(std::vector<real>(np, real(1)), "dfriction");
+  side.layer = to_device<Exec>(layer, "layer");
   return side;
 }
 
 template <class Exec>
 std::vector<weft::Contact> narrow(const Sheets& s, long chunk, long& total) {
   using Mem = typename Exec::memory_space;
-  const weft::SideMesh<Mem> side = side_of<Mem>(s);
-  Kokkos::View<weft::IndexPair*, Mem> pairs = to_view<weft::IndexPair, Mem>(s.pairs, "pairs");
+  const weft::SideMesh<Mem> side = side_of<Exec>(s);
+  Kokkos::View<weft::IndexPair*, Mem> pairs = weft::test::to_device<Exec>(s.pairs, "pairs");
   Kokkos::View<weft::Contact*, Mem> contacts("contacts", 0);
   weft::NarrowPipeline<Exec> pipeline(chunk);
   total = pipeline.run(Exec(), side, side, weft::NarrowSettings{}, pairs, long(s.pairs.size()), contacts, 0);
@@ -98,7 +92,7 @@ TEST(WEFT_TEST_SUITE, narrow_phase_kernels_match_testing_pair_by_pair) {
   using Exec = WEFT_TEST_EXECSPACE;
   const Sheets s;
   // The reference: every pair's tests and CCDs in turn, on the host.
-  const weft::SideMesh<Kokkos::HostSpace> host = side_of<Kokkos::HostSpace>(s);
+  const weft::SideMesh<Kokkos::HostSpace> host = side_of<Kokkos::DefaultHostExecutionSpace>(s);
   const weft::NarrowSettings ns;
   std::vector<uint32_t> masks;
   long by_ccd = 0, n = 0;
