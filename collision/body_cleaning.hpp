@@ -123,7 +123,7 @@ struct InsideByParity {
   Kokkos::View<int*, Mem> flag;
 
   KOKKOS_INLINE_FUNCTION int crossings(int v, Vec3 d) const {
-    const Aabb bounds = tree.box(0);
+    const Aabb bounds = tree.bounds();  // rounded outward, so it still holds every triangle
     const Vec3 o = body.x(v);
     real t_exit = __builtin_huge_val();
     for (int a = 0; a < 3; ++a) {

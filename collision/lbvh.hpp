@@ -9,6 +9,9 @@
 // Traversal is stackless: every node stores its rope (the next node in depth-first, left-first order once
 // its subtree is done), so no stack can overflow whatever the tree's depth, and the leaves are met in
 // tree order. (With unique 64-bit keys the depth is at most 64 anyway: prefix lengths grow down the tree.)
+// A walk reads one 32-byte node per step: its box rounded outward to floats, its rope and its first child
+// (or primitive). The float boxes only prune; a leaf is kept by its exact box, so the pairs are exactly
+// those of the exact boxes, and the same on every backend.
 #pragma once
 #include "collision/aabb.hpp"
 #include "collision/morton.hpp"
@@ -34,50 +37,80 @@ struct KeepAllPairs {
   KOKKOS_INLINE_FUNCTION bool operator()(int, int) const { return true; }
 };
 
+// A node as walks read it: one 32-byte sector.
+struct alignas(16) LbvhNode {
+  float lo[3], hi[3];  // the node's box, rounded outward: it holds the exact box
+  int rope;            // next node after this subtree, -1 after the last
+  int child;           // internal node: its first child; leaf: its primitive
+};
+
+// The box rounded outward to floats. The pads (2^-22 relative, 2^-100 absolute) exceed the conversion's
+// rounding, so lo never rises and hi never falls; infinities stay as they are.
+struct FloatBox {
+  float lo[3], hi[3];
+};
+KOKKOS_INLINE_FUNCTION float float_below(double d) {
+  const double m = d - (d < 0 ? -d : d) * 0x1p-22 - 0x1p-100;
+  return static_cast<float>(m < d ? m : d);
+}
+KOKKOS_INLINE_FUNCTION float float_above(double d) {
+  const double m = d + (d < 0 ? -d : d) * 0x1p-22 + 0x1p-100;
+  return static_cast<float>(m > d ? m : d);
+}
+KOKKOS_INLINE_FUNCTION FloatBox outward(const Aabb& b) {
+  return {{float_below(b.lo.x), float_below(b.lo.y), float_below(b.lo.z)},
+          {float_above(b.hi.x), float_above(b.hi.y), float_above(b.hi.z)}};
+}
+KOKKOS_INLINE_FUNCTION bool overlaps(const LbvhNode& a, const FloatBox& b) {
+  return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] &&
+         a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
+}
+
 // The tree as kernels see it. With n >= 1 leaves: internal nodes 0..n-2, leaves n-1..2n-2, root 0 (the only
 // leaf when n == 1). Leaf n-1+k holds the k-th primitive in key order.
 template <class Mem>
 struct LbvhNodes {
   int n = 0;
-  Kokkos::View<const int*, Mem> left;            // per internal node: its first child
-  Kokkos::View<const int*, Mem> last;            // per internal node: its subtree's last leaf, in tree order
-  Kokkos::View<const int*, Mem> rope;            // per node: next node after its subtree, -1 after the last
-  Kokkos::View<const Aabb*, Mem> box;            // per node
+  Kokkos::View<const LbvhNode*, Mem> node;       // per node
+  Kokkos::View<const Aabb*, Mem> leaf_box;       // per leaf, in tree order: the exact box
   Kokkos::View<const uint32_t*, Mem> primitive;  // per leaf, in tree order
+
+  // A box holding every primitive's box: the root's, rounded outward (n >= 1).
+  KOKKOS_INLINE_FUNCTION Aabb bounds() const {
+    const LbvhNode r = node(0);
+    return {{r.lo[0], r.lo[1], r.lo[2]}, {r.hi[0], r.hi[1], r.hi[2]}};
+  }
 
   // f(j) for every primitive j whose box overlaps q, in tree order.
   template <class F>
   KOKKOS_INLINE_FUNCTION void for_each_overlap(const Aabb& q, F&& f) const {
-    const int first_leaf = n - 1;
-    int x = n > 0 ? 0 : -1;
-    while (x >= 0) {
-      if (!overlaps(box(x), q)) {
-        x = rope(x);  // skip the subtree
-      } else if (x < first_leaf) {
-        x = left(x);
-      } else {
-        f(static_cast<int>(primitive(x - first_leaf)));
-        x = rope(x);
-      }
-    }
+    walk(n > 0 ? 0 : -1, q, f);
   }
 
   // f(j) for every primitive j whose leaf comes after leaf k in tree order and whose box overlaps q: a self
-  // query meets each overlapping pair once, from its earlier leaf, and skips the subtrees before it.
+  // query meets each overlapping pair once, from its earlier leaf. The walk starts at the leaf's rope, the
+  // first node after it in depth-first order, so it never meets the leaves before it.
   template <class F>
   KOKKOS_INLINE_FUNCTION void for_each_later_overlap(int k, const Aabb& q, F&& f) const {
+    walk(node(n - 1 + k).rope, q, f);
+  }
+
+ private:
+  // The depth-first walk from node x to the end, skipping subtrees whose float box misses q's.
+  template <class F>
+  KOKKOS_INLINE_FUNCTION void walk(int x, const Aabb& q, F&& f) const {
     const int first_leaf = n - 1;
-    int x = n > 0 ? 0 : -1;
+    const FloatBox qf = outward(q);
     while (x >= 0) {
-      const int end = x < first_leaf ? last(x) : x - first_leaf;
-      if (end <= k || !overlaps(box(x), q)) {
-        x = rope(x);
-      } else if (x < first_leaf) {
-        x = left(x);
-      } else {
-        f(static_cast<int>(primitive(x - first_leaf)));
-        x = rope(x);
+      const LbvhNode nd = node(x);
+      if (overlaps(nd, qf)) {
+        if (x < first_leaf) {
+          x = nd.child;
+          continue;
+        }
+        if (overlaps(leaf_box(x - first_leaf), q)) f(nd.child);
       }
+      x = nd.rope;
     }
   }
 };
@@ -149,7 +182,7 @@ void centre_bounds(const Exec& exec, Kokkos::View<const Aabb*, typename Exec::me
 template <class Mem>
 struct LinkNodes {
   Kokkos::View<const uint64_t*, Mem> keys;
-  Kokkos::View<int*, Mem> left, right, parent, rope, last;
+  Kokkos::View<int*, Mem> left, right, parent, rope;
   long n;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const long first_leaf = n - 1;
@@ -179,7 +212,6 @@ struct LinkNodes {
     // leaf gamma is such a subtree. Internal nodes keep their range end until FinishRopes.
     rope(first_leaf + gamma) = r;
     rope(i) = static_cast<int>(hi);
-    last(i) = static_cast<int>(hi);
   }
 };
 
@@ -205,12 +237,11 @@ void link_nodes(const Exec& exec, Kokkos::View<const uint64_t*, typename Exec::m
                 Kokkos::View<int*, typename Exec::memory_space> left,
                 Kokkos::View<int*, typename Exec::memory_space> right,
                 Kokkos::View<int*, typename Exec::memory_space> parent,
-                Kokkos::View<int*, typename Exec::memory_space> rope,
-                Kokkos::View<int*, typename Exec::memory_space> last) {
+                Kokkos::View<int*, typename Exec::memory_space> rope) {
   using Mem = typename Exec::memory_space;
   const long n = static_cast<long>(keys.extent(0));
   Kokkos::parallel_for("weft::lbvh_link", Kokkos::RangePolicy<Exec>(exec, 0, n - 1),
-                       LinkNodes<Mem>{keys, left, right, parent, rope, last, n});
+                       LinkNodes<Mem>{keys, left, right, parent, rope, n});
   Kokkos::parallel_for("weft::lbvh_ropes", Kokkos::RangePolicy<Exec>(exec, 0, n), FinishRopes<Mem>{parent, rope, n - 1});
 }
 
@@ -233,26 +264,56 @@ struct UniqueKeys {
   KOKKOS_INLINE_FUNCTION void operator()(long k) const { keys(k) = morton_key(static_cast<uint32_t>(keys(k)), primitive(k)); }
 };
 
+// Rope and first child (primitive, for a leaf) of every node; boxes come with the refit.
+template <class Mem>
+struct PackNodes {
+  Kokkos::View<const int*, Mem> left, rope;
+  Kokkos::View<const uint32_t*, Mem> primitive;
+  Kokkos::View<LbvhNode*, Mem> node;
+  long first_leaf;
+  KOKKOS_INLINE_FUNCTION void operator()(long x) const {
+    node(x).rope = rope(x);
+    node(x).child = x < first_leaf ? left(x) : static_cast<int>(primitive(x - first_leaf));
+  }
+};
+
+KOKKOS_INLINE_FUNCTION void set_box(LbvhNode& nd, const FloatBox& b) {
+  for (int i = 0; i < 3; ++i) {
+    nd.lo[i] = b.lo[i];
+    nd.hi[i] = b.hi[i];
+  }
+}
+
 // Each leaf walks up; at every node the second child to finish (an integer atomic count) merges both
-// children, so each node is merged once, in a fixed order: exact, the same on every backend.
+// children, so each node is merged once. Float min and max are exact, so the boxes are the same on every
+// backend.
 template <class Mem>
 struct Refit {
   Kokkos::View<const Aabb*, Mem> boxes;
   Kokkos::View<const uint32_t*, Mem> primitive;
   Kokkos::View<const int*, Mem> left, right, parent;
-  Kokkos::View<Aabb*, Mem> box;
+  Kokkos::View<LbvhNode*, Mem> node;
+  Kokkos::View<Aabb*, Mem> leaf_box;
   Kokkos::View<int*, Mem> visits;
   long n;
   KOKKOS_INLINE_FUNCTION void operator()(long k) const {
     int x = static_cast<int>(n - 1 + k);
-    box(x) = boxes(primitive(k));
+    const Aabb b = boxes(primitive(k));
+    leaf_box(k) = b;
+    set_box(node(x), outward(b));
     while (true) {
       const int p = parent(x);
       if (p < 0) break;
-      Kokkos::memory_fence();  // publish box(x) before the count that lets the sibling's thread read it
+      Kokkos::memory_fence();  // publish node(x)'s box before the count that lets the sibling's thread read it
       if (Kokkos::atomic_fetch_add(&visits(p), 1) == 0) break;  // the sibling's thread finishes p
       Kokkos::memory_fence();  // and see the sibling's box
-      box(p) = merge(box(left(p)), box(right(p)));
+      const LbvhNode l = node(left(p)), r = node(right(p));
+      FloatBox m;
+      for (int i = 0; i < 3; ++i) {
+        m.lo[i] = r.lo[i] < l.lo[i] ? r.lo[i] : l.lo[i];
+        m.hi[i] = l.hi[i] < r.hi[i] ? r.hi[i] : l.hi[i];
+      }
+      set_box(node(p), m);
       x = p;
     }
   }
@@ -270,7 +331,7 @@ struct PairQuery {
   KOKKOS_INLINE_FUNCTION void visit(long k, F&& f) const {
     if (Self) {
       const int i = static_cast<int>(tree.primitive(k));
-      tree.for_each_later_overlap(static_cast<int>(k), tree.box(tree.n - 1 + k), [&](int j) {
+      tree.for_each_later_overlap(static_cast<int>(k), tree.leaf_box(k), [&](int j) {
         const int a = i < j ? i : j, b = i < j ? j : i;
         if (pred(a, b)) f(a, b);
       });
@@ -347,7 +408,7 @@ class Lbvh {
 
   const Exec& execution_space() const { return exec_; }
   long size() const { return n_; }
-  LbvhNodes<Mem> nodes() const { return {static_cast<int>(n_), left_, last_, rope_, box_, primitive_}; }
+  LbvhNodes<Mem> nodes() const { return {static_cast<int>(n_), node_, leaf_box_, primitive_}; }
   // Primitive of each leaf in tree order: the order in which queries meet a query's overlapping primitives.
   Kokkos::View<const uint32_t*, Mem> leaf_primitives() const { return primitive_; }
 
@@ -361,11 +422,11 @@ class Lbvh {
     lbvh_detail::resize_exact(primitive_, n, "weft::lbvh_primitive");
     lbvh_detail::resize_exact(left_, internal, "weft::lbvh_left");
     lbvh_detail::resize_exact(right_, internal, "weft::lbvh_right");
-    lbvh_detail::resize_exact(last_, internal, "weft::lbvh_last");
     lbvh_detail::resize_exact(visits_, internal, "weft::lbvh_visits");
     lbvh_detail::resize_exact(parent_, nodes, "weft::lbvh_parent");
     lbvh_detail::resize_exact(rope_, nodes, "weft::lbvh_rope");
-    lbvh_detail::resize_exact(box_, nodes, "weft::lbvh_box");
+    lbvh_detail::resize_exact(node_, nodes, "weft::lbvh_nodes");
+    lbvh_detail::resize_exact(leaf_box_, n, "weft::lbvh_leaf_box");
     if (n == 0) return;
 
     Kokkos::View<Aabb, Mem> bounds(Kokkos::view_alloc(exec_, std::string("weft::lbvh_scene")));
@@ -377,7 +438,9 @@ class Lbvh {
     radix_sort_pairs(exec_, keys_, primitive_, 32);
     Kokkos::parallel_for("weft::lbvh_keys", Kokkos::RangePolicy<Exec>(exec_, 0, n),
                          lbvh_detail::UniqueKeys<Mem>{keys_, primitive_});
-    lbvh_detail::link_nodes(exec_, Kokkos::View<const uint64_t*, Mem>(keys_), left_, right_, parent_, rope_, last_);
+    lbvh_detail::link_nodes(exec_, Kokkos::View<const uint64_t*, Mem>(keys_), left_, right_, parent_, rope_);
+    Kokkos::parallel_for("weft::lbvh_pack", Kokkos::RangePolicy<Exec>(exec_, 0, nodes),
+                         lbvh_detail::PackNodes<Mem>{left_, rope_, primitive_, node_, n - 1});
     refit(boxes);
   }
 
@@ -388,7 +451,7 @@ class Lbvh {
     if (n == 0) return;
     Kokkos::deep_copy(exec_, visits_, 0);
     Kokkos::parallel_for("weft::lbvh_refit", Kokkos::RangePolicy<Exec>(exec_, 0, n),
-                         lbvh_detail::Refit<Mem>{boxes, primitive_, left_, right_, parent_, box_, visits_, n});
+                         lbvh_detail::Refit<Mem>{boxes, primitive_, left_, right_, parent_, node_, leaf_box_, visits_, n});
   }
 
   // Pairs (i, j), i < j, of primitives whose boxes overlap and that pred(i, j) keeps, each once; sorted by
@@ -445,10 +508,10 @@ class Lbvh {
   Kokkos::View<uint64_t*, Mem> keys_;      // sorted unique keys
   Kokkos::View<uint32_t*, Mem> primitive_;  // per leaf
   Kokkos::View<int*, Mem> left_, right_;    // per internal node
-  Kokkos::View<int*, Mem> last_;            // per internal node: last leaf of its subtree
   Kokkos::View<int*, Mem> visits_;          // per internal node, refit's arrival counts
   Kokkos::View<int*, Mem> parent_, rope_;   // per node
-  Kokkos::View<Aabb*, Mem> box_;            // per node
+  Kokkos::View<LbvhNode*, Mem> node_;      // per node: float box, rope, first child or primitive
+  Kokkos::View<Aabb*, Mem> leaf_box_;       // per leaf: exact box
   Kokkos::View<long*, Mem> offsets_;        // per query, first output slot
 };
 

@@ -165,33 +165,49 @@ void expect_pairs(const Kokkos::View<IndexPair*, typename Exec::memory_space>& p
   EXPECT_EQ(weft::hash_view(Exec(), got), weft::hash_view(Kokkos::DefaultHostExecutionSpace(), ref)) << what;
 }
 
-// The tree's structure: leaves in key order, each internal box the merge of its children, every node met once
-// by a walk along left links and ropes (leaves in tree order), depth at most 64. Returns the depth.
+// The tree's structure: leaves in key order with their exact boxes, each float box holding its exact box
+// (leaves) or the merge of its children's (internal nodes), every node met once by a walk along first-child
+// links and ropes (leaves in tree order), depth at most 64. Returns the depth.
 template <class Exec>
 int check_tree(const weft::Lbvh<Exec>& bvh, const std::vector<Aabb>& boxes, const std::string& what) {
   const auto t = bvh.nodes();
   const int n = t.n;
   EXPECT_EQ(n, int(boxes.size())) << what;
   if (n == 0) return 0;
-  const auto left = weft::test::to_host(t.left);
-  const auto rope = weft::test::to_host(t.rope);
-  const auto box = weft::test::to_host(t.box);
+  const auto node = weft::test::to_host(t.node);
+  const auto leaf_box = weft::test::to_host(t.leaf_box);
   const auto prim = weft::test::to_host(t.primitive);
   const int first_leaf = n - 1;
-  for (int k = 0; k < n; ++k) EXPECT_TRUE(same_bits(box[first_leaf + k], boxes[prim[k]])) << what << " leaf " << k;
+  const auto holds = [](const weft::LbvhNode& f, const Aabb& b) {
+    for (int c = 0; c < 3; ++c)
+      if (!(f.lo[c] <= b.lo[c] && b.hi[c] <= f.hi[c])) return false;
+    return true;
+  };
+  for (int k = 0; k < n; ++k) {
+    EXPECT_TRUE(same_bits(leaf_box[k], boxes[prim[k]])) << what << " leaf " << k;
+    EXPECT_EQ(node[first_leaf + k].child, int(prim[k])) << what << " leaf " << k;
+    EXPECT_TRUE(holds(node[first_leaf + k], leaf_box[k])) << what << " leaf " << k;
+  }
   for (int i = 0; i < first_leaf; ++i) {
-    const int l = left[i], r = rope[l];  // the right child follows the left child's subtree
-    EXPECT_TRUE(r >= 0 && same_bits(box[i], weft::merge(box[l], box[r]))) << what << " node " << i;
+    const int l = node[i].child, r = node[l].rope;  // the right child follows the left child's subtree
+    if (r < 0) {
+      ADD_FAILURE() << what << " node " << i << ": no right child";
+      continue;
+    }
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(node[i].lo[c], std::min(node[l].lo[c], node[r].lo[c])) << what << " node " << i;
+      EXPECT_EQ(node[i].hi[c], std::max(node[l].hi[c], node[r].hi[c])) << what << " node " << i;
+    }
   }
   std::vector<int> depth(2 * n - 1, -1);
   depth[0] = 0;
   int visited = 0, next_leaf = first_leaf, max_depth = 0;
-  for (int x = 0; x >= 0; x = x < first_leaf ? left[x] : rope[x]) {
+  for (int x = 0; x >= 0; x = x < first_leaf ? node[x].child : node[x].rope) {
     ++visited;
     EXPECT_GE(depth[x], 0) << what;
     max_depth = std::max(max_depth, depth[x]);
     if (x < first_leaf) {
-      depth[left[x]] = depth[rope[left[x]]] = depth[x] + 1;
+      depth[node[x].child] = depth[node[node[x].child].rope] = depth[x] + 1;
     } else {
       EXPECT_EQ(x, next_leaf++) << what;
     }
