@@ -12,7 +12,8 @@
 #pragma once
 #include "collision/ccd.hpp"
 #include "collision/lbvh.hpp"
-#include "collision/narrow_pipeline.hpp"  // job_owner, kth_bit
+#include "collision/mask_jobs.hpp"
+#include "collision/narrow_phase.hpp"
 
 #include <Kokkos_Core.hpp>
 
@@ -87,7 +88,6 @@ struct CrossingTests {
   Kokkos::View<const IndexPair*, Mem> pairs;
   Kokkos::View<const int*, Mem> back;
   Kokkos::View<uint32_t*, Mem> open;
-  Kokkos::View<long*, Mem> counts;
   int round;
   bool self, all;
   CrossingSettings cs;
@@ -122,7 +122,6 @@ struct CrossingTests {
       }
     }
     open(i) = o;
-    counts(i) = popcount15(o);
   }
 };
 
@@ -132,14 +131,12 @@ template <class Mem>
 struct CrossingCcd {
   SideMesh<Mem> A, B;
   Kokkos::View<const IndexPair*, Mem> pairs;
-  Kokkos::View<const uint32_t*, Mem> open;
-  Kokkos::View<const long*, Mem> offsets;
-  long npairs;
+  MaskJobs<Mem> jobs;  // over the open bits
   Kokkos::View<int*, Mem> flag;
   CrossingSettings cs;
   KOKKOS_INLINE_FUNCTION void operator()(long j) const {
-    const long i = narrow_detail::job_owner(offsets, npairs, j);
-    const int bit = narrow_detail::kth_bit(open(i), j - offsets(i));
+    int bit = 0;
+    const long i = jobs.item(j, bit);
     const int fa = pairs(i).first, fb = pairs(i).second;
     if (bit < 6) {  // vertex p of side P against face f of side F
       const bool a_vertex = bit < 3;
@@ -251,15 +248,15 @@ class CrossingFailsafe {
       if (long(open_.extent(0)) < m) {
         const long size = m + m / 2 + 16 < kChunk ? m + m / 2 + 16 : kChunk;
         open_ = Kokkos::View<uint32_t*, Mem>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::failsafe_open"), size);
-        counts_ = Kokkos::View<long*, Mem>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::failsafe_counts"), size);
       }
       const Kokkos::View<const IndexPair*, Mem> chunk = Kokkos::subview(pairs, std::make_pair(lo, lo + m));
       Kokkos::parallel_for(self ? "weft::failsafe_self" : "weft::failsafe_collider", Kokkos::RangePolicy<Exec>(exec, 0, m),
-                           CrossingTests<Mem>{A, B, chunk, back_, open_, counts_, round, self, all, cs_});
-      const long njobs = long(exclusive_scan(exec, Kokkos::subview(counts_, std::make_pair(0L, m)), counts_));
+                           CrossingTests<Mem>{A, B, chunk, back_, open_, round, self, all, cs_});
+      MaskJobs<Mem> jobs;
+      const long njobs = count_mask_jobs(exec, open_, m, 0x7FFFu, offsets_, jobs);
       if (njobs > 0)
         Kokkos::parallel_for("weft::failsafe_ccd", Kokkos::RangePolicy<Exec>(exec, 0, njobs),
-                             CrossingCcd<Mem>{A, B, chunk, open_, counts_, m, flag_, cs_});
+                             CrossingCcd<Mem>{A, B, chunk, jobs, flag_, cs_});
     }
   }
 
@@ -267,7 +264,7 @@ class CrossingFailsafe {
   static constexpr long kChunk = 1L << 24;  // pairs per chunk, as in the narrow phase
   Kokkos::View<int*, Mem> back_, flag_;
   Kokkos::View<uint32_t*, Mem> open_{"weft::failsafe_open", 0};
-  Kokkos::View<long*, Mem> counts_{"weft::failsafe_counts", 0};
+  Kokkos::View<long*, Mem> offsets_{"weft::failsafe_offsets", 0};  // per block of pairs
   failsafe_detail::CrossingSettings cs_;
 };
 

@@ -3,12 +3,12 @@
 // written at its scanned offset. Splitting the CCD out keeps the per-pair kernel small (on the H200 the
 // kernel with the CCD inlined ran at 12% occupancy, limited by its registers) and gives the CCD's long,
 // uneven searches threads of their own. Masks are combined with an integer atomic
-// OR, which is order-free; counts and lists are count-scan-fill: the contacts come out in pair order, and
-// the same bits, on every backend.
+// OR, which is order-free; the CCD jobs and the contacts are numbered by scanning their bits per block of
+// pairs (collision/mask_jobs.hpp): the contacts come out in pair order, and the same bits, on every backend.
 #pragma once
 #include "collision/lbvh.hpp"  // IndexPair
+#include "collision/mask_jobs.hpp"
 #include "collision/narrow_phase.hpp"
-#include "core/scan.hpp"
 
 #include <Kokkos_Core.hpp>
 
@@ -16,80 +16,51 @@ namespace weft {
 
 namespace narrow_detail {
 
+// Bits of `open` per pair: the feature pairs left to the CCD, and those of them whose CCD runs with
+// separation 0 (touching) shifted by 15.
+constexpr uint32_t kFeatureBits = 0x7FFFu;
+
 template <class Mem>
 struct TestPairs {
   SideMesh<Mem> A, B;
   Kokkos::View<const IndexPair*, Mem> pairs;
-  Kokkos::View<uint32_t*, Mem> masks, open;  // open: CCD bits, touching bits << 15
-  Kokkos::View<long*, Mem> counts;           // CCD jobs of each pair
+  Kokkos::View<uint32_t*, Mem> masks, open;
   NarrowSettings ns;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const FeatureTests t = feature_tests(A, pairs(i).first, B, pairs(i).second, ns);
     masks(i) = t.hit;
     open(i) = t.ccd | (t.touching << 15);
-    counts(i) = popcount15(t.ccd);
   }
 };
 
-// Job j of a list scanned into offsets[0, n) (offsets(i): item i's first job): the item whose range
-// [offsets(i), offsets(i + 1)) holds j, found by bisection, so no list of jobs is stored (a list of owners
-// measured no faster on the H200 and took memory).
-template <class Offsets>
-KOKKOS_INLINE_FUNCTION long job_owner(const Offsets& offsets, long n, long j) {
-  long lo = 0, hi = n;  // offsets(lo) <= j, and j < offsets(hi) when hi < n
-  while (hi - lo > 1) {
-    const long mid = lo + (hi - lo) / 2;
-    if (offsets(mid) <= j) lo = mid;
-    else hi = mid;
-  }
-  return lo;
-}
-
-// The k-th set bit of o, counting from 0; o has more than k set bits.
-KOKKOS_INLINE_FUNCTION int kth_bit(uint32_t o, long k) {
-  int bit = 0;
-  for (;; ++bit)
-    if (((o >> bit) & 1u) && k-- == 0) return bit;
-}
-
-// CCD job j: the k-th open feature bit of its pair.
+// CCD job j: an open feature bit of its pair.
 template <class Mem>
 struct RunCcdJobs {
   SideMesh<Mem> A, B;
   Kokkos::View<const IndexPair*, Mem> pairs;
-  Kokkos::View<const uint32_t*, Mem> open;
-  Kokkos::View<const long*, Mem> offsets;
-  long npairs;
+  MaskJobs<Mem> jobs;  // over `open`
   Kokkos::View<uint32_t*, Mem> masks;
   NarrowSettings ns;
   KOKKOS_INLINE_FUNCTION void operator()(long j) const {
-    const long i = job_owner(offsets, npairs, j);
-    const uint32_t o = open(i);
-    const int bit = kth_bit(o, j - offsets(i));
-    if (feature_ccd(A, pairs(i).first, B, pairs(i).second, bit, (o >> (15 + bit)) & 1u, ns))
+    int bit = 0;
+    const long i = jobs.item(j, bit);
+    if (feature_ccd(A, pairs(i).first, B, pairs(i).second, bit, (jobs.masks(i) >> (15 + bit)) & 1u, ns))
       Kokkos::atomic_fetch_or(&masks(i), 1u << bit);
   }
 };
 
-template <class Mem>
-struct CountContacts {
-  Kokkos::View<const uint32_t*, Mem> masks;
-  Kokkos::View<long*, Mem> counts;
-  KOKKOS_INLINE_FUNCTION void operator()(long i) const { counts(i) = popcount15(masks(i)); }
-};
-
-// Writes each pair's contacts at its scanned offset.
+// Writes each pair's contacts from its first slot on.
 template <class Mem>
 struct FillContacts {
   SideMesh<Mem> A, B;
   Kokkos::View<const IndexPair*, Mem> pairs;
-  Kokkos::View<const uint32_t*, Mem> masks;
-  Kokkos::View<const long*, Mem> offsets;
+  MaskJobs<Mem> slots;  // over the contact masks
   NarrowSettings ns;
   Kokkos::View<Contact*, Mem> out;
   long first;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
-    if (masks(i)) fill_contacts(A, pairs(i).first, B, pairs(i).second, masks(i), ns, out, first + offsets(i));
+    const uint32_t m = slots.masks(i);
+    if (m) fill_contacts(A, pairs(i).first, B, pairs(i).second, m, ns, out, first + slots.first(i));
   }
 };
 
@@ -125,16 +96,15 @@ class NarrowPipeline {
     using namespace narrow_detail;
     grow(masks_, n);
     grow(open_, n);
-    grow(counts_, n);
     const auto range = Kokkos::RangePolicy<Exec>(exec, 0, n);
-    const auto counts = Kokkos::subview(counts_, std::make_pair(0L, n));
-    Kokkos::parallel_for("weft::narrow_tests", range, TestPairs<Mem>{A, B, pairs, masks_, open_, counts_, ns});
-    const long njobs = long(exclusive_scan(exec, counts, counts));
+    Kokkos::parallel_for("weft::narrow_tests", range, TestPairs<Mem>{A, B, pairs, masks_, open_, ns});
+    MaskJobs<Mem> jobs;
+    const long njobs = count_mask_jobs(exec, open_, n, kFeatureBits, offsets_, jobs);
     if (njobs > 0)
       Kokkos::parallel_for("weft::narrow_ccd", Kokkos::RangePolicy<Exec>(exec, 0, njobs),
-                           RunCcdJobs<Mem>{A, B, pairs, open_, counts_, n, masks_, ns});
-    Kokkos::parallel_for("weft::narrow_count", range, CountContacts<Mem>{masks_, counts_});
-    const long total = long(exclusive_scan(exec, counts, counts));
+                           RunCcdJobs<Mem>{A, B, pairs, jobs, masks_, ns});
+    MaskJobs<Mem> slots;
+    const long total = count_mask_jobs(exec, masks_, n, kFeatureBits, offsets_, slots);
     if (long(contacts.extent(0)) < first + total) {
       Kokkos::View<Contact*, Mem> bigger(Kokkos::view_alloc(Kokkos::WithoutInitializing, contacts.label()),
                                          (first + total) * 3 / 2 + 64);
@@ -143,7 +113,7 @@ class NarrowPipeline {
                           Kokkos::subview(contacts, std::make_pair(0L, first)));
       contacts = bigger;
     }
-    Kokkos::parallel_for("weft::narrow_fill", range, FillContacts<Mem>{A, B, pairs, masks_, counts_, ns, contacts, first});
+    Kokkos::parallel_for("weft::narrow_fill", range, FillContacts<Mem>{A, B, pairs, slots, ns, contacts, first});
     return total;
   }
 
@@ -158,7 +128,7 @@ class NarrowPipeline {
 
   long chunk_;
   Kokkos::View<uint32_t*, Mem> masks_{"weft::narrow_masks", 0}, open_{"weft::narrow_open", 0};
-  Kokkos::View<long*, Mem> counts_{"weft::narrow_counts", 0};
+  Kokkos::View<long*, Mem> offsets_{"weft::narrow_offsets", 0};  // per block of pairs
 };
 
 }  // namespace weft
