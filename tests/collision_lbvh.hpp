@@ -293,6 +293,11 @@ TEST(WEFT_TEST_SUITE, lbvh_queries_match_brute_force_on_triangle_soups) {
   using Exec = WEFT_TEST_EXECSPACE;
   for (int n : {0, 1, 2, 3, 5, 64, 1000, 2500})
     check_self_and_cross<Exec>(random_soup(n, 100 + n), random_soup(n / 2 + 3, 900 + n), "soup n=" + std::to_string(n));
+  // Boxes that overlap most others: queries with more pairs than the counting walk keeps (32).
+  Soup dense = random_soup(150, 5), dense_queries = random_soup(60, 6);
+  dense.margin.assign(dense.margin.size(), 0.3);
+  dense_queries.margin.assign(dense_queries.margin.size(), 0.2);
+  check_self_and_cross<Exec>(dense, dense_queries, "dense soup");
   // Queries against an empty tree, and no queries at all.
   check_self_and_cross<Exec>(random_soup(0, 1), random_soup(10, 2), "empty tree");
   check_self_and_cross<Exec>(random_soup(50, 3), random_soup(0, 4), "no queries");
