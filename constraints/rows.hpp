@@ -41,33 +41,43 @@ struct RowContext {
   Kokkos::View<Vec3*, Mem> collider_x;
 };
 
-// C and gradients of one row; returns the number of particles (0: nothing to do).
-template <class XView, class Mem>
-KOKKOS_INLINE_FUNCTION int row_eval(const Row& r, const XView& x, const RowContext<Mem>& ctx, real& C, Vec3 (&g)[5]) {
+// The positions of a row's particles, p[k] = x(r.idx[k]) for k < r.n, loaded before any arithmetic so that
+// a thread waits for memory once (the colour kernels are bound by load latency: ~50K rows fill a fifth of
+// the GPU).
+template <class XView>
+KOKKOS_INLINE_FUNCTION void row_points(const Row& r, const XView& x, Vec3 (&p)[5]) {
+  for (int k = 0; k < 5; ++k)
+    if (k < r.n) p[k] = x(r.idx[k]);
+}
+
+// C and gradients of one row from its particles' positions p (row_points); returns the number of particles
+// (0: nothing to do).
+template <class Mem>
+KOKKOS_INLINE_FUNCTION int row_eval(const Row& r, const Vec3 (&p)[5], const RowContext<Mem>& ctx, real& C, Vec3 (&g)[5]) {
   switch (r.kind) {
     case kRowDistance: {
       Vec3 gg[2];
-      C = distance_eval(x(r.idx[0]), x(r.idx[1]), r.rest, gg);
+      C = distance_eval(p[0], p[1], r.rest, gg);
       g[0] = gg[0]; g[1] = gg[1];
       return 2;
     }
     case kRowBend: {
       Vec3 gg[4];
-      C = bend_eval(x(r.idx[0]), x(r.idx[1]), x(r.idx[2]), x(r.idx[3]), r.rest, gg);
+      C = bend_eval(p[0], p[1], p[2], p[3], r.rest, gg);
       for (int k = 0; k < 4; ++k) g[k] = gg[k];
       return 4;
     }
     case kRowTriarap: {
       Vec3 gg[3];
       const real dm[4] = {r.data[0], r.data[1], r.data[2], r.data[3]};
-      C = triarap_eval(x(r.idx[0]), x(r.idx[1]), x(r.idx[2]), dm, gg);
+      C = triarap_eval(p[0], p[1], p[2], dm, gg);
       for (int k = 0; k < 3; ++k) g[k] = gg[k];
       return 3;
     }
     case kRowPin: {
       Vec3 gg[1];
       const Vec3 goal = r.target >= 0 ? ctx.targets(r.target) : Vec3{r.data[0], r.data[1], r.data[2]};
-      C = pin_eval(x(r.idx[0]), goal, r.rest, gg);
+      C = pin_eval(p[0], goal, r.rest, gg);
       g[0] = gg[0];
       return 1;
     }
@@ -75,7 +85,7 @@ KOKKOS_INLINE_FUNCTION int row_eval(const Row& r, const XView& x, const RowConte
       Vec3 gg[1];
       const Vec3 goal = attach_goal(ctx.collider_x(r.cidx[0]), ctx.collider_x(r.cidx[1]), ctx.collider_x(r.cidx[2]),
                                     r.data[0], r.data[1]);
-      C = pin_eval(x(r.idx[0]), goal, r.rest, gg);
+      C = pin_eval(p[0], goal, r.rest, gg);
       g[0] = gg[0];
       return 1;
     }
@@ -83,16 +93,16 @@ KOKKOS_INLINE_FUNCTION int row_eval(const Row& r, const XView& x, const RowConte
       Vec3 t[4];
       const real w[4] = {r.data[0], r.data[1], r.data[2], r.data[3]};
       const int nt = r.n - 1;
-      for (int k = 0; k < nt; ++k) t[k] = x(r.idx[k + 1]);
-      C = ptprim_eval(x(r.idx[0]), t, w, nt, r.rest, g);
+      for (int k = 0; k < nt; ++k) t[k] = p[k + 1];
+      C = ptprim_eval(p[0], t, w, nt, r.rest, g);
       return r.n;
     }
     case kRowFemDeviatoric:
     case kRowFemHydrostatic: {
       Vec3 gg[3];
       const real dm[4] = {r.data[0], r.data[1], r.data[2], r.data[3]};
-      C = r.kind == kRowFemDeviatoric ? fem_deviatoric_eval(x(r.idx[0]), x(r.idx[1]), x(r.idx[2]), dm, gg)
-                                      : fem_hydrostatic_eval(x(r.idx[0]), x(r.idx[1]), x(r.idx[2]), dm, r.rest, gg);
+      C = r.kind == kRowFemDeviatoric ? fem_deviatoric_eval(p[0], p[1], p[2], dm, gg)
+                                      : fem_hydrostatic_eval(p[0], p[1], p[2], dm, r.rest, gg);
       for (int k = 0; k < 3; ++k) g[k] = gg[k];
       return 3;
     }
@@ -100,22 +110,27 @@ KOKKOS_INLINE_FUNCTION int row_eval(const Row& r, const XView& x, const RowConte
   return 0;
 }
 
-// Solve one row in place (Gauss-Seidel): lambda accumulates; particles move by w g dlambda.
+// Solve one row in place (Gauss-Seidel): lambda accumulates; particles move by w g dlambda. The row and
+// everything it reads are loaded first; no other row of its colour moves its particles.
 template <class XView, class WView, class Mem>
-KOKKOS_INLINE_FUNCTION void project_row(const Row& r, const XView& x, const XView& x_start, const WView& w,
+KOKKOS_INLINE_FUNCTION void project_row(const Row& row, const XView& x, const XView& x_start, const WView& w,
                                         real& lambda, const RowContext<Mem>& ctx, real h) {
+  const Row r = row;
+  Vec3 p[5], dx[5];
+  real wi[5] = {0, 0, 0, 0, 0};
+  row_points(r, x, p);
+  for (int k = 0; k < 5; ++k)
+    if (k < r.n) {
+      wi[k] = w(r.idx[k]);
+      dx[k] = p[k] - x_start(r.idx[k]);
+    }
+  const real lambda0 = lambda;
   real C = 0;
   Vec3 g[5];
-  const int n = row_eval(r, x, ctx, C, g);
-  real wi[5] = {0, 0, 0, 0, 0};
-  Vec3 dx[5];
-  for (int k = 0; k < n; ++k) {
-    wi[k] = w(r.idx[k]);
-    dx[k] = x(r.idx[k]) - x_start(r.idx[k]);
-  }
-  const real dl = xpbd_delta_lambda<5>(C, g, wi, dx, lambda, r.m, h);
-  lambda += dl;
-  for (int k = 0; k < n; ++k) x(r.idx[k]) += (wi[k] * dl) * g[k];
+  const int n = row_eval(r, p, ctx, C, g);
+  const real dl = xpbd_delta_lambda<5>(C, g, wi, dx, lambda0, r.m, h);
+  lambda = lambda0 + dl;
+  for (int k = 0; k < n; ++k) x(r.idx[k]) = p[k] + (wi[k] * dl) * g[k];
 }
 
 }  // namespace weft

@@ -101,13 +101,15 @@ struct JacobiRows {
   RowContext<Mem> ctx;
   real h;
   KOKKOS_INLINE_FUNCTION void operator()(long r) const {
-    const Row& row = rows(r);
+    const Row row = rows(r);
+    Vec3 p[5];
+    row_points(row, x, p);
     real C = 0;
     Vec3 g[5];
-    const int n = row_eval(row, x, ctx, C, g);
+    const int n = row_eval(row, p, ctx, C, g);
     real wi[5] = {0, 0, 0, 0, 0};
     Vec3 dx[5];
-    for (int k = 0; k < n; ++k) { wi[k] = w(row.idx[k]); dx[k] = x(row.idx[k]) - xs(row.idx[k]); }
+    for (int k = 0; k < n; ++k) { wi[k] = w(row.idx[k]); dx[k] = p[k] - xs(row.idx[k]); }
     const real dl = xpbd_delta_lambda<5>(C, g, wi, dx, lambda(r), row.m, h);
     lambda(r) += dl;
     for (int k = 0; k < 5; ++k) delta(5 * r + k) = (wi[k] * dl) * g[k];
