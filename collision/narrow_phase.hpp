@@ -352,10 +352,4 @@ KOKKOS_INLINE_FUNCTION void fill_contacts(const SideMesh<Mem>& SA, int A, const 
   }
 }
 
-KOKKOS_INLINE_FUNCTION int popcount15(uint32_t m) {
-  int c = 0;
-  for (int b = 0; b < 15; ++b) c += (m >> b) & 1u;
-  return c;
-}
-
 }  // namespace weft

@@ -105,13 +105,13 @@ TEST(WEFT_TEST_SUITE, narrow_phase_kernels_match_testing_pair_by_pair) {
         ++by_ccd;
       }
     masks.push_back(m);
-    n += weft::popcount15(m);
+    n += weft::popcount32(m);
   }
   Kokkos::View<weft::Contact*, Kokkos::HostSpace> expected("expected", n);
   long o = 0;
   for (size_t i = 0; i < s.pairs.size(); ++i) {
     weft::fill_contacts(host, s.pairs[i].first, host, s.pairs[i].second, masks[i], ns, expected, o);
-    o += weft::popcount15(masks[i]);
+    o += weft::popcount32(masks[i]);
   }
   ASSERT_GT(by_ccd, 0) << "the scene must need the CCD";
   ASSERT_LT(by_ccd, n) << "and proximity";
