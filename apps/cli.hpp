@@ -27,6 +27,9 @@ Backend resolve_backend(const GlobalOptions& g);
 // --self-collision on|off (run, bench): overrides the scene's self_collision when `value` is not empty.
 void add_self_collision_option(CLI::App* cmd, std::string& value);
 void apply_self_collision(const std::string& value, bool& self_collision);
+// --contact-solver gauss-seidel|jacobi (run, bench): overrides the scene's jacobi_contacts when not empty.
+void add_contact_solver_option(CLI::App* cmd, std::string& value);
+void apply_contact_solver(const std::string& value, bool& jacobi_contacts);
 
 // Prints `weft: warning: SCENE: ...` on stderr for each cloth piece too thick for its triangles
 // (thickness_warnings, core/scene.hpp); the run goes on.

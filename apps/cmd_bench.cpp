@@ -11,7 +11,7 @@ namespace weft::cli {
 namespace {
 
 struct Options {
-  std::string scene, schedules = "current", json, self_collision;
+  std::string scene, schedules = "current", json, self_collision, contact_solver;
   int res = 0, frames = 10, warmup = 2;
 };
 
@@ -67,6 +67,7 @@ int bench(const GlobalOptions& g, const Options& o) {
   Runtime rt(g.threads);
   Scene scene = io::load_scene(o.scene, io::BuiltinOptions{o.res});
   apply_self_collision(o.self_collision, scene.settings.self_collision);
+  apply_contact_solver(o.contact_solver, scene.settings.jacobi_contacts);
   warn_about_thickness(scene);
   std::vector<Schedule> schedules;
   if (o.schedules == "paper") schedules = {{"paper-1", 200, 20, 1}, {"paper-2", 20, 2, 10}, {"paper-3", 10, 1, 20}};
@@ -118,6 +119,7 @@ void add_bench(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_option("--schedules", o->schedules, "current (the scene's) or paper (the paper's three)");
   cmd->add_option("--json", o->json, "also write the results as JSON");
   add_self_collision_option(cmd, o->self_collision);
+  add_contact_solver_option(cmd, o->contact_solver);
   cmd->callback([&g, &action, o] { action = [&g, o] { return bench(g, *o); }; });
 }
 

@@ -31,7 +31,8 @@ void print_settings(const SolverSettings& s) {
             << s.parallel_edge_degrees << " degrees\n"
             << "  impact zone smoothing " << (s.impact_zone_smoothing ? "on" : "off") << " (epsilon "
             << s.impact_zone_epsilon << ", " << s.impact_zone_sweeps << " sweeps), crossing fail-safe "
-            << (s.collision_failsafe ? "on" : "off") << "\n";
+            << (s.collision_failsafe ? "on" : "off") << ", contact solver "
+            << (s.jacobi_contacts ? "jacobi" : "gauss-seidel") << "\n";
 }
 
 void print_scene(const std::string& path) {

@@ -34,6 +34,17 @@ void apply_self_collision(const std::string& value, bool& self_collision) {
   if (!value.empty()) self_collision = value == "on";
 }
 
+void add_contact_solver_option(CLI::App* cmd, std::string& value) {
+  cmd->add_option("--contact-solver", value,
+                  "gauss-seidel (by colours) | jacobi (averaged, two launches an iteration): how contacts are "
+                  "projected (default: the scene's)")
+      ->check(CLI::IsMember({"gauss-seidel", "jacobi"}));
+}
+
+void apply_contact_solver(const std::string& value, bool& jacobi_contacts) {
+  if (!value.empty()) jacobi_contacts = value == "jacobi";
+}
+
 void warn_about_thickness(const Scene& s) {
   for (const std::string& w : thickness_warnings(s)) std::fprintf(stderr, "weft: warning: %s: %s\n", s.name.c_str(), w.c_str());
 }

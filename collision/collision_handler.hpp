@@ -5,6 +5,7 @@
 #pragma once
 #include "collision/aabb.hpp"
 #include "collision/contact_colouring.hpp"
+#include "collision/contact_jacobi.hpp"
 #include "collision/crossing_failsafe.hpp"
 #include "collision/impact_zone.hpp"
 #include "collision/lbvh.hpp"
@@ -57,6 +58,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     epsilon_ = st.impact_zone_epsilon;
     sweeps_ = st.impact_zone_sweeps;
     failsafe_ = st.collision_failsafe;
+    jacobi_ = st.jacobi_contacts;
     profile_ = st.profile;
     // Cloth side.
     cloth_tris_ = upload_tris(s.triangles);
@@ -116,9 +118,10 @@ class CollisionHandler final : public CollisionStage<Exec> {
     if (self_) n += narrow(cloth, cloth, /*self*/ true, n);
     if (collider_boxes_.extent(0) > 0) n += narrow(cloth, collider_side(s), false, n);
     ncontacts_ = n;
-    timed(stats_.seconds_contact_colouring, [&] { offsets_ = colouring_.colour(s.exec, contacts_, n, s.w); });
+    if (jacobi_) offsets_ = {0, n};  // one batch: Jacobi needs no colours
+    else timed(stats_.seconds_contact_colouring, [&] { offsets_ = colouring_.colour(s.exec, contacts_, n, s.w); });
     stats_.contacts = n;
-    stats_.colours = long(offsets_.size()) - 1;
+    stats_.colours = jacobi_ ? 0 : long(offsets_.size()) - 1;
   }
 
   void project(const SolverState<Exec>& s, real) override {
@@ -126,6 +129,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     auto x = s.x, xs = s.x_start;
     auto w = s.w;
     auto cx = s.collider_x, cxs = s.collider_x_start;
+    if (jacobi_) return jacobi_run_.project(s.exec, c, ncontacts_, x, xs, w, cx, cxs);
     for (size_t k = 0; k + 1 < offsets_.size(); ++k)
       Kokkos::parallel_for("weft::project_contacts", Kokkos::RangePolicy<Exec>(s.exec, offsets_[k], offsets_[k + 1]),
                            ProjectContacts<Mem>{c, x, xs, w, cx, cxs});
@@ -240,7 +244,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
 
  private:
   NarrowSettings ns_;
-  bool self_ = true, smoothing_ = true, failsafe_ = true, profile_ = false;
+  bool self_ = true, smoothing_ = true, failsafe_ = true, profile_ = false, jacobi_ = false;
   real epsilon_ = 0.1;
   int sweeps_ = 4;
   long ncontacts_ = 0;
@@ -256,6 +260,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   std::vector<long> offsets_{0};
   NarrowPipeline<Exec> narrow_;
   ContactColouring<Exec> colouring_;
+  JacobiContacts<Exec> jacobi_run_;
   ImpactZones<Exec> zones_;
   CrossingFailsafe<Exec> failsafe_run_;
   Stats stats_;

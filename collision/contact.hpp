@@ -37,36 +37,58 @@ KOKKOS_INLINE_FUNCTION real contact_value(const Contact& c, const XView& x, cons
   return dot(c.n, s) - c.r;
 }
 
-// Projects one contact (Gauss-Seidel, compliance 0) and applies position-based friction: tangential motion
-// of the contact since the start of the substep is removed while it is below mu_s times the normal
-// correction, and reduced by mu_d times it otherwise.
+// The normal step of a contact with C < 0: each point's weight wk (inverse mass over its layer-shock
+// scale, 0 for collider points) and the multiplier dl; false when no point can move.
+template <class WView>
+KOKKOS_INLINE_FUNCTION bool contact_normal_step(const Contact& c, real C, const WView& w, real (&wk)[4], real& denom,
+                                                real& dl) {
+  denom = 0;
+  for (int k = 0; k < 4; ++k) {
+    wk[k] = c.p[k] >= 0 ? w(c.p[k]) / c.wscale[k] : 0.0;
+    denom += wk[k] * c.b[k] * c.b[k];
+  }
+  if (!(denom > 0)) return false;
+  dl = -C / denom;
+  return true;
+}
+
+// Position-based friction: the correction (to be weighted by wk b / denom per point) that removes the
+// tangential part of the contact's relative displacement d over the substep while it is below mu_s times
+// the normal correction dn, and reduces it by mu_d times dn otherwise; false when there is none.
+KOKKOS_INLINE_FUNCTION bool friction_correction(const Contact& c, Vec3 d, real dn, Vec3& corr) {
+  const Vec3 dt = d - dot(d, c.n) * c.n;
+  const real len = norm(dt);
+  if (!(len > 0)) return false;
+  const real keep = len < c.mu_s * dn ? 0.0 : max_(real(0), 1 - c.mu_d * dn / len);
+  corr = (keep - 1) * dt;  // removes (1 - keep) of the tangential motion
+  return true;
+}
+
+// Relative displacement of the contact's two sides since the start of the substep.
+template <class XView, class CView>
+KOKKOS_INLINE_FUNCTION Vec3 contact_displacement(const Contact& c, const XView& x, const XView& xs, const CView& cx,
+                                                 const CView& cxs) {
+  Vec3 d{};
+  for (int k = 0; k < 4; ++k)
+    if (c.b[k] != 0) d += c.b[k] * (contact_point_pos(c.p[k], x, cx) - contact_point_pos(c.p[k], xs, cxs));
+  return d;
+}
+
+// Projects one contact (Gauss-Seidel, compliance 0), then applies friction from the corrected positions.
 template <class XView, class WView, class CView>
 KOKKOS_INLINE_FUNCTION void project_contact(const Contact& c, const XView& x, const XView& xs, const WView& w,
                                             const CView& cx, const CView& cxs) {
   const real C = contact_value(c, x, cx);
   if (!(C < 0)) return;
-  real wk[4] = {0, 0, 0, 0}, denom = 0;
-  for (int k = 0; k < 4; ++k) {
-    wk[k] = c.p[k] >= 0 ? w(c.p[k]) / c.wscale[k] : 0.0;
-    denom += wk[k] * c.b[k] * c.b[k];
-  }
-  if (!(denom > 0)) return;
+  real wk[4], denom, dl;
+  if (!contact_normal_step(c, C, w, wk, denom, dl)) return;
   // Points with weight b = 0 (closest point on an edge or corner) are not this contact's: the colouring
   // let another contact of the colour own them, so they must not even be written.
-  const real dl = -C / denom;
   for (int k = 0; k < 4; ++k)
     if (wk[k] > 0 && c.b[k] != 0) x(c.p[k]) += (wk[k] * c.b[k] * dl) * c.n;
   if (!(c.mu_s > 0 || c.mu_d > 0)) return;
-  // Relative displacement of the two sides over the substep, tangential part.
-  Vec3 d{};
-  for (int k = 0; k < 4; ++k)
-    if (c.b[k] != 0)
-      d += c.b[k] * (contact_point_pos(c.p[k], x, cx) - contact_point_pos(c.p[k], xs, cxs));
-  const Vec3 dt = d - dot(d, c.n) * c.n;
-  const real len = norm(dt), dn = -C;
-  if (!(len > 0)) return;
-  const real keep = len < c.mu_s * dn ? 0.0 : max_(real(0), 1 - c.mu_d * dn / len);
-  const Vec3 corr = (keep - 1) * dt;  // removes (1 - keep) of the tangential motion
+  Vec3 corr;
+  if (!friction_correction(c, contact_displacement(c, x, xs, cx, cxs), -C, corr)) return;
   for (int k = 0; k < 4; ++k)
     if (wk[k] > 0 && c.b[k] != 0) x(c.p[k]) += (wk[k] * c.b[k] / denom) * corr;
 }

@@ -31,6 +31,7 @@ struct SolverSettings {
   real impact_zone_epsilon = 0.1;        // contacts with C < -epsilon * thickness are smoothed
   int impact_zone_sweeps = 4;
   bool collision_failsafe = true;        // move back points whose motion would cross cloth (collision/crossing_failsafe.hpp)
+  bool jacobi_contacts = false;          // contacts projected Jacobi-style (averaged) instead of by colours
   bool profile = false;                  // time each stage (fences between stages)
 };
 

@@ -151,7 +151,7 @@ std::string resolve(const std::string& json_path, const std::string& file) {
 
 void read_settings(const Node& n, Scene& s) {
   n.object({"fps", "frames", "substeps", "iterations", "collision_passes", "smoothing", "gravity", "wind", "damping",
-            "impact_zone_smoothing", "collision_failsafe", "collisions"});
+            "impact_zone_smoothing", "collision_failsafe", "contact_solver", "collisions"});
   SolverSettings& st = s.settings;
   st.fps = n.number("fps", st.fps, Range::Positive);
   if (n.has("frames")) {
@@ -169,6 +169,11 @@ void read_settings(const Node& n, Scene& s) {
   st.velocity_damping = n.number("damping", st.velocity_damping, Range::NonNegative);
   if (n.has("impact_zone_smoothing")) st.impact_zone_smoothing = n["impact_zone_smoothing"].boolean();
   if (n.has("collision_failsafe")) st.collision_failsafe = n["collision_failsafe"].boolean();
+  if (n.has("contact_solver")) {
+    const std::string v = n["contact_solver"].string();
+    if (v != "gauss-seidel" && v != "jacobi") n["contact_solver"].fail("expected \"gauss-seidel\" or \"jacobi\"");
+    st.jacobi_contacts = v == "jacobi";
+  }
   if (n.has("collisions")) s.needs_collisions = n["collisions"].boolean();
 }
 

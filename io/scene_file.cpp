@@ -42,6 +42,7 @@ const std::pair<const char*, bool SolverSettings::*> kBoolSettings[] = {
     {"self_collision", &SolverSettings::self_collision},
     {"impact_zone_smoothing", &SolverSettings::impact_zone_smoothing},
     {"collision_failsafe", &SolverSettings::collision_failsafe},
+    {"jacobi_contacts", &SolverSettings::jacobi_contacts},
     {"profile", &SolverSettings::profile},
 };
 const std::pair<const char*, Vec3 SolverSettings::*> kVecSettings[] = {
@@ -338,7 +339,8 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
   for (const auto& [name, m] : kIntSettings) s.*m = h5::read_attribute<int>(f, group, name);
   for (const auto& [name, m] : kBoolSettings) {
     // Added after the first files of this format version were written: absent means the default.
-    if (std::strcmp(name, "collision_failsafe") == 0 && !h5::has_attribute(f, group, name)) continue;
+    const bool optional = std::strcmp(name, "collision_failsafe") == 0 || std::strcmp(name, "jacobi_contacts") == 0;
+    if (optional && !h5::has_attribute(f, group, name)) continue;
     s.*m = h5::read_attribute<int>(f, group, name) != 0;
   }
   for (const auto& [name, m] : kVecSettings) {
