@@ -484,4 +484,20 @@ TEST(WEFT_TEST_SUITE, cli_self_collision_switch_is_recorded_and_resumed) {
   EXPECT_NE(weft.output.find("--self-collision"), std::string::npos) << weft.output;
 }
 
+TEST(WEFT_TEST_SUITE, cli_contact_solver_switch_is_recorded_and_resumed) {
+  WEFT_NEED_CLI();
+  const CacheDir dir("cli_contact_solver");
+  Cli weft(dir);
+  const std::string stack = "run builtin:layer-stack --res 4 --quiet";
+  const std::string run = stack + " --contact-solver jacobi -o " + dir.file("c.h5");
+  ASSERT_EQ(weft(run + " --frames 1-4"), 0) << weft.output;
+  ASSERT_EQ(weft("info " + dir.file("c.h5")), 0) << weft.output;
+  EXPECT_NE(weft.output.find("contact solver jacobi"), std::string::npos) << weft.output;
+  EXPECT_EQ(weft(stack + " --frames 1-6 --resume -o " + dir.file("c.h5")), 2);
+  EXPECT_NE(weft.output.find("another jacobi_contacts setting"), std::string::npos) << weft.output;
+  ASSERT_EQ(weft(run + " --frames 1-6 --resume"), 0) << weft.output;
+  EXPECT_NE(weft(stack + " --frames 1-2 --contact-solver sor"), 0);
+  EXPECT_NE(weft.output.find("--contact-solver"), std::string::npos) << weft.output;
+}
+
 }  // namespace
