@@ -257,7 +257,8 @@ def run_weft(args, scene, frames, self_collision, out_dir):
     on = "on" if self_collision else "off"
     cache = os.path.join(out_dir, "weft_%s_%d_self-%s.h5" % (scene.name, scene.res, on))
     out = sh(weft_cmd(args, "run", "builtin:" + scene.name, "--res", scene.res, "--frames", "1-%d" % (1 + frames),
-                      "--self-collision", on, "-o", cache))
+                      "--self-collision", on, *(["--contact-solver", args.contact_solver] if args.contact_solver else []),
+                      "-o", cache))
     ms = [float(v) for v in re.findall(r"^frame \d+ .* ([0-9.]+) ms$", out, re.M)]
     head = re.search(r"^\S+: \d+ points, (\d+) triangles", out, re.M)
     timed = ms[1:] if len(ms) > 1 else ms
@@ -317,6 +318,8 @@ def main():
     ap.add_argument("--hanging-contact", choices=["both", "on", "off"], default="both",
                     help="self collision on the hanging sheet, both solvers (weft's scene default: off)")
     ap.add_argument("--quick", action="store_true", help="CPU smoke test: hanging res 10, twist res 10, 4 frames")
+    ap.add_argument("--contact-solver", choices=["gauss-seidel", "jacobi"], default=None,
+                    help="weft --contact-solver (default: the scene's, Gauss-Seidel)")
     ap.add_argument("--skip-newton", action="store_true")
     ap.add_argument("--skip-weft", action="store_true", help="run only Newton (--weft still counts its intersections)")
     ap.add_argument("--out", default="peer-results", help="folder for results.json and results.md")
