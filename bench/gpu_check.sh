@@ -29,6 +29,11 @@ if has hashes; then {
       echo "$scene $cfg: $($w $cfg run builtin:$scene --res 12 --frames 1-12 --hash --quiet | tail -1)"
     done
   done
+  for scene in layer-stack skirt; do  # Jacobi contacts: fixed-point sums, the same bits everywhere
+    for cfg in "--backend cuda" "--backend openmp --threads 16"; do
+      echo "$scene jacobi $cfg: $($w $cfg run builtin:$scene --res 12 --frames 1-12 --contact-solver jacobi --hash --quiet | tail -1)"
+    done
+  done
   if [ -d .devdata/ccd ]; then echo "== ccd-eval"; $w --backend cuda ccd-eval .devdata/ccd | tail -1; fi
 } 2>&1 | tee "$out/hashes.log"; fi
 if has bench; then {
