@@ -41,6 +41,7 @@ def main():
     ap.add_argument("--extra", help="comma-separated SCENE=RES scaling scenes (full: layer-drop=69,twist=48; 'none')")
     ap.add_argument("--schedules", default="current", choices=["current", "paper"],
                     help="the scene's schedule, or the paper's three (default: %(default)s)")
+    ap.add_argument("--contact-solver", choices=["gauss-seidel", "jacobi"], help="weft --contact-solver for every run")
     ap.add_argument("--frames", type=int, help="frames timed per run (quick 2, full 3)")
     ap.add_argument("--warmup", type=int, help="frames run before timing (quick 1, full 2)")
     ap.add_argument("--timeout", type=float, help="seconds per run before it is killed (quick 300, full 600)")
@@ -75,7 +76,9 @@ def main():
             js = out / f"{scene}-res{res}.json"
             W.progress(f"{scene} --res {res} ({backend})")
             r = W.run_weft(weft, ["bench", f"builtin:{scene}", "--res", res, "--frames", frames, "--warmup", warmup,
-                                  "--schedules", a.schedules, "--json", js], backend=backend, timeout=timeout, log=log)
+                                  "--schedules", a.schedules, "--json", js]
+                           + (["--contact-solver", a.contact_solver] if a.contact_solver else []),
+                           backend=backend, timeout=timeout, log=log)
             for line in r.stdout + r.stderr:
                 log.write("  " + line + "\n")
             if r.rc != 0 or not js.exists():
