@@ -1,10 +1,9 @@
 // Jacobi projection of contacts: every contact computes its corrections from the same positions, and each
-// point then moves by the average of the corrections it received (over-relaxing the average, 1.5 or 2 times,
-// left the layer-stack less calm). Two launches per iteration, however
-// many contacts meet at a point, and no colouring; Gauss-Seidel (one launch per colour, 90-400 colours
-// where contacts pile up) converges faster per iteration. The corrections are summed as 64-bit fixed-point
-// integers (integer atomics add in any order to the same sum), so the result is the same on every backend
-// and thread count.
+// point then moves by the average of the corrections it received. Two launches per iteration however many
+// contacts meet at a point, and no colouring; Gauss-Seidel (one launch per colour, 90-400 colours where
+// contacts pile up) converges faster per iteration. Over-relaxing the average (1.5 or 2 times) left the
+// layer-stack less calm. The corrections are summed as 64-bit fixed-point integers (integer atomics add in
+// any order to the same sum), so the result is the same on every backend and thread count.
 #pragma once
 #include "collision/contact.hpp"
 
@@ -16,7 +15,7 @@ namespace jacobi_detail {
 
 using Fixed = unsigned long long;  // two's complement sums of signed fixed-point values
 constexpr real kFixedScale = 1099511627776.0;  // 2^40: resolution 9e-13 m
-constexpr real kFixedLimit = 72057594037927936.0;  // 2^56: 65 km, with room for 256 summed corrections
+constexpr real kFixedLimit = 72057594037927936.0;  // 2^56: 65 km, and 128 of them sum without overflow
 
 KOKKOS_INLINE_FUNCTION Fixed to_fixed(real v) {
   const real s = v * kFixedScale;
