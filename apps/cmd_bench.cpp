@@ -73,8 +73,10 @@ int bench(const GlobalOptions& g, const Options& o) {
   if (o.schedules == "paper") schedules = {{"paper-1", 200, 20, 1}, {"paper-2", 20, 2, 10}, {"paper-3", 10, 1, 20}};
   else if (o.schedules == "current") schedules = {{"scene", 0, 0, 0}};
   else throw Error("--schedules is 'paper' or 'current'", 2);
-  std::printf("%s: %zu points, %zu triangles, backend %s, %d frames after %d warm-up (stage times fenced)\n",
-              scene.name.c_str(), scene.points.size(), scene.triangles.size(), backend_name(b), o.frames, o.warmup);
+  const char* contacts = scene.settings.jacobi_contacts ? "jacobi" : "gauss-seidel";
+  std::printf("%s: %zu points, %zu triangles, backend %s, %s contacts, %d frames after %d warm-up (stage times "
+              "fenced)\n", scene.name.c_str(), scene.points.size(), scene.triangles.size(), backend_name(b), contacts,
+              o.frames, o.warmup);
   std::printf("%-9s %5s %5s %5s %10s %12s %13s %10s %10s %10s %8s %10s %9s\n", "schedule", "iter", "pass", "sub",
               "ms/frame", "constraints", "ms/col.pass", "contacts", "smoothing", "fail-safe", "rounds", "#contacts",
               "mem MiB");
@@ -91,7 +93,7 @@ int bench(const GlobalOptions& g, const Options& o) {
   }
   if (!o.json.empty()) io::write_file_atomically(o.json, [&](std::ostream& out) {
     out << "{\"scene\": \"" << scene.name << "\", \"triangles\": " << scene.triangles.size() << ", \"backend\": \""
-        << backend_name(b) << "\", \"results\": [";
+        << backend_name(b) << "\", \"contact_solver\": \"" << contacts << "\", \"results\": [";
     for (size_t i = 0; i < results.size(); ++i) {
       const Result& r = results[i];
       out << (i ? ", " : "") << "{\"schedule\": \"" << r.schedule << "\", \"iterations\": " << r.iterations
