@@ -15,6 +15,10 @@ struct CcdSettings {
   real tolerance = 1e-6;
   // Boxes examined before giving up; a query that runs out reports a hit at the earliest time not excluded.
   int max_iterations = 1000000;
+  // Stop at the first box reported: the answer's `hit` is the same (a report is a hit whatever follows),
+  // only `toi` is no longer the earliest. For callers that read `hit` alone, it spares the search for
+  // earlier boxes, which is what long searches spend their iterations on.
+  bool first_hit = false;
 };
 
 struct CcdResult {
@@ -47,7 +51,7 @@ KOKKOS_INLINE_FUNCTION real earliest_open(const uint8_t* path, int depth, real t
 // Depth first from the unit box, earlier half of t first, skipping boxes that start no earlier than the
 // best report so far; the memory is one step per depth.
 template <CcdKind K>
-KOKKOS_INLINE_FUNCTION CcdResult search(const Query<K>& q, int max_iterations) {
+KOKKOS_INLINE_FUNCTION CcdResult search(const Query<K>& q, int max_iterations, bool first_hit) {
   Box b{{0, 0, 0}, {1, 1, 1}};
   uint8_t path[kMaxDepth];
   int depth = 0;
@@ -62,7 +66,10 @@ KOKKOS_INLINE_FUNCTION CcdResult search(const Query<K>& q, int max_iterations) {
       if (r & kUpperFirst) b.lo[j] += b.w[j];
       continue;
     }
-    if (r == kReport) best = b.lo[0];
+    if (r == kReport) {
+      if (first_hit) return {true, b.lo[0]};
+      best = b.lo[0];
+    }
     // Next: the other half of the deepest split still on its first half.
     for (;;) {
       if (depth == 0) return best <= 1 ? CcdResult{true, best} : CcdResult{false, 1};
@@ -85,7 +92,7 @@ template <CcdKind K>
 KOKKOS_INLINE_FUNCTION CcdResult solve(const Vec3 (&x0)[4], const Vec3 (&x1)[4], real ms, const CcdSettings& s) {
   Query<K> q;
   if (!q.init(x0, x1, ms, s.tolerance)) return {true, 0};  // unbounded input: a hit at once, conservatively
-  return search(q, s.max_iterations);
+  return search(q, s.max_iterations, s.first_hit);
 }
 
 }  // namespace ccd_detail

@@ -43,6 +43,7 @@ template <CcdKind K>
 struct Query {
   Vec3 x0[4], d[4];  // start positions and displacements
   real e[3];         // rounding bound of a corner value, per axis
+  real e_norm;       // |e|, added to every upper bound of |F|
   real ms, ms2, tolerance;
   bool euclid;  // ms^2 is safe to compare with
 
@@ -62,6 +63,7 @@ struct Query {
     // (|F| <= 2M) within 46Mu (vertex-face; 42Mu edge-edge); widening a range by it rounds by another 2Mu.
     // 128Mu covers all of that and the higher-order terms; 2^-1000 covers underflow.
     for (int i = 0; i < 3; ++i) e[i] = m[i] * 0x1p-46 + 0x1p-1000;
+    e_norm = norm(Vec3{e[0], e[1], e[2]});
     ms = min_sep;
     // The Euclidean test is skipped where ms^2 could underflow or overflow (the per-axis one always runs);
     // the factor absorbs the rounding of the squares and their sum.
@@ -125,7 +127,7 @@ struct Query {
         nearest = k;
       }
     }
-    upper = sqrt_(upper) + norm(Vec3{e[0], e[1], e[2]});
+    upper = sqrt_(upper) + e_norm;
     if (noise || upper - lower <= tolerance) return kReport;
     // Halve the parameter that widens the range of |F| most: a change D of F along a box edge (exact: F is
     // affine along it) widens it by about |D . dir| along dir and |D|^2 / |mid| across. A parameter F does
@@ -133,6 +135,7 @@ struct Query {
     int split = kReport;
     real most = 0;
     for (int j = 0; j < 3; ++j) {
+      if (!(b.w[j] > kMinWidth)) continue;  // never split: its square roots and divisions are not needed
       real along = 0, across = 0;
       for (int k = 0; k < 8; ++k)
         if (!(k >> j & 1)) {
@@ -141,7 +144,7 @@ struct Query {
           along = max_(along, abs_(dot(diff, dir)));
           if (n2 > 0) across = max_(across, n2 / max_(rm, sqrt_(n2)));
         }
-      if (b.w[j] > kMinWidth && along + across > most) {
+      if (along + across > most) {
         most = along + across;
         split = j;
       }

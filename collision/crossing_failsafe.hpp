@@ -29,7 +29,7 @@ struct CrossingSettings {
 };
 
 KOKKOS_INLINE_FUNCTION CcdSettings ccd_settings(real r, const CrossingSettings& s) {
-  return CcdSettings{max_(real(1e-6), s.tolerance_scale * r), s.max_iterations};
+  return CcdSettings{max_(real(1e-6), s.tolerance_scale * r), s.max_iterations, /*first_hit*/ true};
 }
 
 }  // namespace failsafe_detail

@@ -74,7 +74,7 @@ KOKKOS_INLINE_FUNCTION bool owns_closest_feature(const SideMesh<Mem>& F, int f, 
 }
 
 KOKKOS_INLINE_FUNCTION CcdSettings ccd_settings(real r, const NarrowSettings& s) {
-  return CcdSettings{max_(s.ccd.tolerance, s.ccd_tolerance_scale * r), s.ccd.max_iterations};
+  return CcdSettings{max_(s.ccd.tolerance, s.ccd_tolerance_scale * r), s.ccd.max_iterations, /*first_hit*/ true};
 }
 
 // The outcomes of a feature pair's cheap tests: decided (no contact, contact), or left to the CCD with
