@@ -118,10 +118,10 @@ class CollisionHandler final : public CollisionStage<Exec> {
     if (self_) n += narrow(cloth, cloth, /*self*/ true, n);
     if (collider_boxes_.extent(0) > 0) n += narrow(cloth, collider_side(s), false, n);
     ncontacts_ = n;
-    if (jacobi_) offsets_ = {0, n};  // one batch: Jacobi needs no colours
+    if (jacobi_) offsets_ = {0};  // Jacobi needs no colours
     else timed(stats_.seconds_contact_colouring, [&] { offsets_ = colouring_.colour(s.exec, contacts_, n, s.w); });
     stats_.contacts = n;
-    stats_.colours = jacobi_ ? 0 : long(offsets_.size()) - 1;
+    stats_.colours = long(offsets_.size()) - 1;
   }
 
   void project(const SolverState<Exec>& s, real) override {

@@ -323,6 +323,39 @@ TEST(WEFT_TEST_SUITE, ccd_random_queries_match_sampled_distance_and_host) {
   }
 }
 
+// Stopping at the first reported box (what the narrow phase and the fail-safe ask for) answers `hit` as the
+// full search does, with a time no earlier than its earliest; on the device as on the host.
+TEST(WEFT_TEST_SUITE, ccd_first_hit_gives_the_same_answer) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  weft::test::TestRng rng(7);
+  CcdSettings first;
+  first.first_hit = true;
+  for (CcdKind kind : {VF, EE}) {
+    for (real ms : {0.0, 0.05}) {
+      std::vector<Vec3> rows;
+      for (int q = 0; q < 300; ++q) {
+        Vec3 x0[4];
+        for (auto& p : x0) p = {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)};
+        for (const auto& p : x0) rows.push_back(p);
+        for (const auto& p : x0) rows.push_back(p + Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)});
+      }
+      const auto full = device_ccd<Exec>(kind, rows, ms), fast = device_ccd<Exec>(kind, rows, ms, first);
+      long hits = 0, later = 0;
+      for (size_t q = 0; q < full.size(); ++q) {
+        const CcdResult h = host_ccd(kind, &rows[8 * q], ms, first);
+        EXPECT_EQ(fast[q].hit, full[q].hit) << "query " << q;
+        EXPECT_EQ(h.hit, fast[q].hit) << "query " << q;
+        EXPECT_EQ(weft::test::bits(h.toi), weft::test::bits(fast[q].toi)) << "query " << q;
+        if (full[q].hit) EXPECT_GE(fast[q].toi, full[q].toi) << "query " << q;
+        hits += full[q].hit;
+        later += full[q].hit && fast[q].toi > full[q].toi;
+      }
+      EXPECT_GT(hits, 10) << "too few contacts to test anything";
+      std::printf("ccd first_hit: %ld of %ld hits stopped before the earliest box\n", later, hits);
+    }
+  }
+}
+
 // Positions on a coarse grid, many of them coplanar, parallel or coincident, against the sampled distance.
 TEST(WEFT_TEST_SUITE, ccd_degenerate_grid_queries_match_sampled_distance) {
   using Exec = WEFT_TEST_EXECSPACE;
