@@ -50,5 +50,10 @@ template <class Exec, class Closure>
 Graph<Exec> create_graph(const Exec& exec, Closure&& c) {
   return Kokkos::Experimental::create_graph(exec, std::forward<Closure>(c));
 }
+// A node that follows both a and b (they may run at the same time).
+template <class Exec>
+GraphNode<Exec> when_all(const GraphNode<Exec>& a, const GraphNode<Exec>& b) {
+  return Kokkos::Experimental::when_all(a, b);
+}
 
 }  // namespace weft::compat

@@ -158,19 +158,29 @@ class Solver {
     if (collision_) timed(prof_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });
   }
 
-  // One Gauss-Seidel sweep: a kernel per colour, recorded once as a graph, so that on the device a sweep
-  // is one graph launch instead of one launch per colour (the host backends run the same kernels in turn).
+  // One Gauss-Seidel sweep: a kernel per colour and row kind, recorded once as a graph, so that on the
+  // device a sweep is one graph launch (the host backends run the same kernels in turn).
   void gauss_seidel_sweep(real h) {
-    if (colour_offset_.size() < 2) return;
+    if (colour_kinds_.empty()) return;
     if (!sweep_ || sweep_h_ != h) {
-      const kernels::ProjectRows<Mem> f{rows_, state_.x, state_.x_start, state_.w, lambda_,
-                                        RowContext<Mem>{targets_, state_.collider_x}, h};
+      // On the device the kinds of a colour run side by side. On the host they follow one another: Kokkos
+      // 3.4's host graphs walk every path back to the root at each submit, which grows as 2^joins.
+      constexpr bool side_by_side = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
       // (void): emplace returns the graph, whose type Kokkos marks [[nodiscard]].
       (void)sweep_.emplace(compat::create_graph(exec_, [&](const compat::GraphNode<Exec>& root) {
         compat::GraphNode<Exec> node = root;
-        for (size_t c = 0; c + 1 < colour_offset_.size(); ++c)
-          node = node.then_parallel_for("weft::project_colour",
-                                        Kokkos::RangePolicy<Exec>(exec_, colour_offset_[c], colour_offset_[c + 1]), f);
+        for (const std::vector<KindRange>& colour : colour_kinds_) {
+          if (!side_by_side) {
+            for (const KindRange& k : colour) node = project_kind(node, k, h);
+            continue;
+          }
+          std::optional<compat::GraphNode<Exec>> done;
+          for (const KindRange& k : colour) {
+            const compat::GraphNode<Exec> n = project_kind(node, k, h);
+            done = done ? compat::when_all(*done, n) : n;
+          }
+          if (done) node = *done;
+        }
       }));
       sweep_h_ = h;
     }
@@ -195,6 +205,32 @@ class Solver {
   }
 
  private:
+  // The rows [begin, end) of one colour, all of one kind.
+  struct KindRange {
+    long begin, end;
+    int kind;
+  };
+
+  // A node projecting the rows of k after `after`, by the kernel compiled for k's kind.
+  compat::GraphNode<Exec> project_kind(const compat::GraphNode<Exec>& after, const KindRange& k, real h) const {
+    const auto node = [&](auto kind) -> compat::GraphNode<Exec> {
+      return after.then_parallel_for(
+          "weft::project_rows", Kokkos::RangePolicy<Exec>(exec_, k.begin, k.end),
+          kernels::ProjectRows<Mem, decltype(kind)::value>{rows_, state_.x, state_.x_start, state_.w, lambda_,
+                                                            RowContext<Mem>{targets_, state_.collider_x}, h});
+    };
+    switch (k.kind) {
+      case kRowDistance: return node(std::integral_constant<int, kRowDistance>{});
+      case kRowBend: return node(std::integral_constant<int, kRowBend>{});
+      case kRowTriarap: return node(std::integral_constant<int, kRowTriarap>{});
+      case kRowPin: return node(std::integral_constant<int, kRowPin>{});
+      case kRowAttach: return node(std::integral_constant<int, kRowAttach>{});
+      case kRowPtPrim: return node(std::integral_constant<int, kRowPtPrim>{});
+      case kRowFemDeviatoric: return node(std::integral_constant<int, kRowFemDeviatoric>{});
+      default: return node(std::integral_constant<int, kRowFemHydrostatic>{});
+    }
+  }
+
   // Fraction of its lag a pinned point held back by the crossing fail-safe closes per substep.
   static constexpr real kPinCatchUp = 0.25;
   template <class V>
@@ -284,6 +320,13 @@ class Solver {
     std::vector<Row> sorted(rows.size());
     for (size_t r = 0; r < rows.size(); ++r) sorted[fill[col.colour[r]]++] = rows[r];
     rows_ = upload(sorted, "weft::rows");
+    colour_kinds_.assign(col.count, {});
+    for (int c = 0; c < col.count; ++c)
+      for (long r = colour_offset_[c]; r < colour_offset_[c + 1]; ++r) {
+        std::vector<KindRange>& runs = colour_kinds_[c];
+        if (runs.empty() || runs.back().kind != sorted[r].kind) runs.push_back({r, r, sorted[r].kind});
+        runs.back().end = r + 1;
+      }
     lambda_ = View<real*>("weft::lambda", sorted.size());
     row_scratch_ = View<real*>("weft::row_scratch", sorted.size());
     // Jacobi gather lists: for each point, the (row, slot) entries that move it, in row order.
@@ -311,6 +354,7 @@ class Solver {
   std::vector<real> w_host_;
   View<Row*> rows_;
   std::vector<long> colour_offset_;
+  std::vector<std::vector<KindRange>> colour_kinds_;  // per colour, its rows by kind
   View<Vec3**> target_frames_, collider_frames_;
   View<Vec3*> targets_, targets_before_;  // targets at the end and at the start of the substep
   View<int*> kin_point_, kin_target_;

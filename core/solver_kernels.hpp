@@ -81,15 +81,16 @@ struct UpdateVelocity {
   KOKKOS_INLINE_FUNCTION void operator()(long i) const { v(i) = (x(i) - xs(i)) / h; }
 };
 
-// One colour of Gauss-Seidel: the rows of a colour share no point, so they run in parallel.
-template <class Mem>
+// The rows of kind K of one colour of Gauss-Seidel: the rows of a colour share no point, so they run in
+// parallel (and so do the kinds of a colour).
+template <class Mem, int K>
 struct ProjectRows {
   Kokkos::View<Row*, Mem> rows;
   Kokkos::View<Vec3*, Mem> x, xs;
   Kokkos::View<real*, Mem> w, lambda;
   RowContext<Mem> ctx;
   real h;
-  KOKKOS_INLINE_FUNCTION void operator()(long r) const { project_row(rows(r), x, xs, w, lambda(r), ctx, h); }
+  KOKKOS_INLINE_FUNCTION void operator()(long r) const { project_row_of<K>(rows(r), x, xs, w, lambda(r), ctx, h); }
 };
 
 // Jacobi smoothing, first half: every row's correction from the same positions.
@@ -103,7 +104,8 @@ struct JacobiRows {
   KOKKOS_INLINE_FUNCTION void operator()(long r) const {
     const Row row = rows(r);
     Vec3 p[5];
-    row_points(row, x, p);
+    for (int k = 0; k < 5; ++k)
+      if (k < row.n) p[k] = x(row.idx[k]);
     real C = 0;
     Vec3 g[5];
     const int n = row_eval(row, p, ctx, C, g);

@@ -1,5 +1,5 @@
 // One constraint iteration of the XPBD solver: Solver::gauss_seidel_sweep (core/solver.hpp), one kernel
-// launch per colour over every distance and bend row, on the hanging sheet (cloth_grid.hpp) one substep
+// launch per colour and row kind over every distance and bend row, on the hanging sheet (cloth_grid.hpp) one substep
 // after the start, so positions, lambdas and x_start are those of a running solve.
 #pragma once
 #include "bench/micro/bench_common.hpp"
