@@ -158,20 +158,21 @@ class Solver {
     if (collision_) timed(prof_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });
   }
 
-  // One Gauss-Seidel sweep: a kernel per colour and row kind, recorded once as a graph, so that on the
-  // device a sweep is one graph launch (the host backends run the same kernels in turn).
+  // One Gauss-Seidel sweep, recorded once as a graph, so that on the device a sweep is one graph launch.
+  // On the device each colour is a kernel per row kind, the kinds side by side. The host backends run one
+  // kernel per colour, of any kind: a CPU gains nothing from the smaller kernels, more launches cost more
+  // thread barriers, and Kokkos 3.4's host graphs walk every path back to the root at each submit, which
+  // grows as 2^joins.
   void gauss_seidel_sweep(real h) {
     if (colour_kinds_.empty()) return;
     if (!sweep_ || sweep_h_ != h) {
-      // On the device the kinds of a colour run side by side. On the host they follow one another: Kokkos
-      // 3.4's host graphs walk every path back to the root at each submit, which grows as 2^joins.
-      constexpr bool side_by_side = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
+      constexpr bool by_kind = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
       // (void): emplace returns the graph, whose type Kokkos marks [[nodiscard]].
       (void)sweep_.emplace(compat::create_graph(exec_, [&](const compat::GraphNode<Exec>& root) {
         compat::GraphNode<Exec> node = root;
         for (const std::vector<KindRange>& colour : colour_kinds_) {
-          if (!side_by_side) {
-            for (const KindRange& k : colour) node = project_kind(node, k, h);
+          if (!by_kind) {
+            node = project_kind(node, {colour.front().begin, colour.back().end, kRowKinds}, h);
             continue;
           }
           std::optional<compat::GraphNode<Exec>> done;
@@ -205,13 +206,13 @@ class Solver {
   }
 
  private:
-  // The rows [begin, end) of one colour, all of one kind.
+  // The rows [begin, end) of one colour, all of one kind (kRowKinds: of any kind).
   struct KindRange {
     long begin, end;
     int kind;
   };
 
-  // A node projecting the rows of k after `after`, by the kernel compiled for k's kind.
+  // A node projecting the rows of k after `after`, by the kernel compiled for k's kind (kRowKinds: any).
   compat::GraphNode<Exec> project_kind(const compat::GraphNode<Exec>& after, const KindRange& k, real h) const {
     const auto node = [&](auto kind) -> compat::GraphNode<Exec> {
       return after.then_parallel_for(
@@ -227,7 +228,8 @@ class Solver {
       case kRowAttach: return node(std::integral_constant<int, kRowAttach>{});
       case kRowPtPrim: return node(std::integral_constant<int, kRowPtPrim>{});
       case kRowFemDeviatoric: return node(std::integral_constant<int, kRowFemDeviatoric>{});
-      default: return node(std::integral_constant<int, kRowFemHydrostatic>{});
+      case kRowFemHydrostatic: return node(std::integral_constant<int, kRowFemHydrostatic>{});
+      default: return node(std::integral_constant<int, kRowKinds>{});
     }
   }
 

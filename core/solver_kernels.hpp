@@ -81,8 +81,8 @@ struct UpdateVelocity {
   KOKKOS_INLINE_FUNCTION void operator()(long i) const { v(i) = (x(i) - xs(i)) / h; }
 };
 
-// The rows of kind K of one colour of Gauss-Seidel: the rows of a colour share no point, so they run in
-// parallel (and so do the kinds of a colour).
+// The rows of kind K (kRowKinds: of any kind) of one colour of Gauss-Seidel: the rows of a colour share
+// no point, so they run in parallel (and so do the kinds of a colour).
 template <class Mem, int K>
 struct ProjectRows {
   Kokkos::View<Row*, Mem> rows;
@@ -90,7 +90,10 @@ struct ProjectRows {
   Kokkos::View<real*, Mem> w, lambda;
   RowContext<Mem> ctx;
   real h;
-  KOKKOS_INLINE_FUNCTION void operator()(long r) const { project_row_of<K>(rows(r), x, xs, w, lambda(r), ctx, h); }
+  KOKKOS_INLINE_FUNCTION void operator()(long r) const {
+    if constexpr (K == kRowKinds) project_row(rows(r), x, xs, w, lambda(r), ctx, h);
+    else project_row_of<K>(rows(r), x, xs, w, lambda(r), ctx, h);
+  }
 };
 
 // Jacobi smoothing, first half: every row's correction from the same positions.
