@@ -189,20 +189,36 @@ class Solver {
   }
 
   // Vellum's smoothing: every row computes its correction from the same positions, and each point moves
-  // by the average of the corrections it receives (gathered in row order: deterministic).
+  // by the average of the corrections it receives (gathered in row order: deterministic). On the device the
+  // rows are a kernel per colour and kind, all side by side, recorded once as a graph; the host runs one
+  // kernel over every row.
   void jacobi_sweep(real h) {
-    auto rows = rows_;
-    auto lambda = lambda_;
-    auto x = state_.x, xs = state_.x_start;
-    auto w = state_.w;
-    auto delta = row_delta_;
-    const RowContext<Mem> ctx{targets_, state_.collider_x};
-    Kokkos::parallel_for("weft::jacobi_rows", Kokkos::RangePolicy<Exec>(exec_, 0, rows.extent(0)),
-                         kernels::JacobiRows<Mem>{rows, x, xs, delta, w, lambda, ctx, h});
-    auto off = point_slot_offset_;
-    auto slot = point_slot_;
-    Kokkos::parallel_for("weft::jacobi_points", Kokkos::RangePolicy<Exec>(exec_, 0, x.extent(0)),
-                         kernels::JacobiPoints<Mem>{off, slot, delta, x});
+    const auto rows_kernel = [&](auto kind) {
+      return kernels::JacobiRows<Mem, decltype(kind)::value>{rows_, state_.x, state_.x_start, row_delta_, state_.w,
+                                                               lambda_, RowContext<Mem>{targets_, state_.collider_x}, h};
+    };
+    const kernels::JacobiPoints<Mem> points{point_slot_offset_, point_slot_, row_delta_, state_.x};
+    const long n = long(state_.x.extent(0));
+    if constexpr (Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible) {
+      Kokkos::parallel_for("weft::jacobi_rows", Kokkos::RangePolicy<Exec>(exec_, 0, rows_.extent(0)),
+                           rows_kernel(std::integral_constant<int, kRowKinds>{}));
+      Kokkos::parallel_for("weft::jacobi_points", Kokkos::RangePolicy<Exec>(exec_, 0, n), points);
+    } else {
+      if (colour_kinds_.empty()) return;
+      if (!smooth_ || smooth_h_ != h) {
+        (void)smooth_.emplace(compat::create_graph(exec_, [&](const compat::GraphNode<Exec>& root) {
+          std::optional<compat::GraphNode<Exec>> done;
+          for (const std::vector<KindRange>& colour : colour_kinds_)
+            for (const KindRange& k : colour) {
+              const compat::GraphNode<Exec> node = kind_node(root, "weft::jacobi_rows", k, rows_kernel);
+              done = done ? compat::when_all(*done, node) : node;
+            }
+          done->then_parallel_for("weft::jacobi_points", Kokkos::RangePolicy<Exec>(exec_, 0, n), points);
+        }));
+        smooth_h_ = h;
+      }
+      smooth_->submit();
+    }
   }
 
  private:
@@ -214,11 +230,19 @@ class Solver {
 
   // A node projecting the rows of k after `after`, by the kernel compiled for k's kind (kRowKinds: any).
   compat::GraphNode<Exec> project_kind(const compat::GraphNode<Exec>& after, const KindRange& k, real h) const {
+    return kind_node(after, "weft::project_rows", k, [&](auto kind) {
+      return kernels::ProjectRows<Mem, decltype(kind)::value>{rows_, state_.x, state_.x_start, state_.w, lambda_,
+                                                               RowContext<Mem>{targets_, state_.collider_x}, h};
+    });
+  }
+
+  // A node running, after `after`, over the rows of k, the kernel that kernel(std::integral_constant<int,
+  // kind>) makes for k's kind.
+  template <class Kernel>
+  compat::GraphNode<Exec> kind_node(const compat::GraphNode<Exec>& after, const char* label, const KindRange& k,
+                                    const Kernel& kernel) const {
     const auto node = [&](auto kind) -> compat::GraphNode<Exec> {
-      return after.then_parallel_for(
-          "weft::project_rows", Kokkos::RangePolicy<Exec>(exec_, k.begin, k.end),
-          kernels::ProjectRows<Mem, decltype(kind)::value>{rows_, state_.x, state_.x_start, state_.w, lambda_,
-                                                            RowContext<Mem>{targets_, state_.collider_x}, h});
+      return after.then_parallel_for(label, Kokkos::RangePolicy<Exec>(exec_, k.begin, k.end), kernel(kind));
     };
     switch (k.kind) {
       case kRowDistance: return node(std::integral_constant<int, kRowDistance>{});
@@ -340,7 +364,7 @@ class Solver {
       slots.resize(off[n]);
       std::vector<long> pos(off.begin(), off.end() - 1);
       for (size_t r = 0; r < sorted.size(); ++r)
-        for (int k = 0; k < sorted[r].n; ++k) slots[pos[sorted[r].idx[k]]++] = long(5 * r + k);
+        for (int k = 0; k < sorted[r].n; ++k) slots[pos[sorted[r].idx[k]]++] = long(k) * long(sorted.size()) + long(r);
       point_slot_offset_ = upload(off, "weft::point_slot_offset");
       point_slot_ = upload(slots, "weft::point_slot");
       row_delta_ = View<Vec3*>("weft::row_delta", 5 * sorted.size());
@@ -367,6 +391,8 @@ class Solver {
   FrameStats prof_;  // stage times of the frame in progress
   std::optional<compat::Graph<Exec>> sweep_;  // gauss_seidel_sweep's kernels, for step h sweep_h_
   real sweep_h_ = 0;
+  std::optional<compat::Graph<Exec>> smooth_;  // jacobi_sweep's kernels on the device, for step smooth_h_
+  real smooth_h_ = 0;
 };
 
 }  // namespace weft

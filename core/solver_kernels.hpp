@@ -96,8 +96,10 @@ struct ProjectRows {
   }
 };
 
-// Jacobi smoothing, first half: every row's correction from the same positions.
-template <class Mem>
+// Jacobi smoothing, first half: every row's correction from the same positions; rows of kind K only (as
+// ProjectRows: kRowKinds for any kind). Row r's correction of its particle k goes to slot k * rows + r, so
+// that a warp's rows write side by side.
+template <class Mem, int K>
 struct JacobiRows {
   Kokkos::View<Row*, Mem> rows;
   Kokkos::View<Vec3*, Mem> x, xs, delta;
@@ -105,6 +107,25 @@ struct JacobiRows {
   RowContext<Mem> ctx;
   real h;
   KOKKOS_INLINE_FUNCTION void operator()(long r) const {
+    if constexpr (K == kRowKinds || K == kRowPtPrim) any_kind(r);
+    else {
+      constexpr int N = row_kind_points(K);
+      const Row& row = rows(r);
+      int idx[N];
+      Vec3 p[N], g[N], dx[N];
+      real wi[N];
+      for (int k = 0; k < N; ++k) {
+        idx[k] = row.idx[k];
+        p[k] = x(idx[k]);
+      }
+      const real C = row_eval_of<K>(row, p, ctx, g);
+      for (int k = 0; k < N; ++k) { wi[k] = w(idx[k]); dx[k] = p[k] - xs(idx[k]); }
+      const real dl = xpbd_delta_lambda<N>(C, g, wi, dx, lambda(r), row.m, h);
+      lambda(r) += dl;
+      for (int k = 0; k < N; ++k) delta(k * long(rows.extent(0)) + r) = (wi[k] * dl) * g[k];
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void any_kind(long r) const {
     const Row row = rows(r);
     Vec3 p[5];
     for (int k = 0; k < 5; ++k)
@@ -117,7 +138,7 @@ struct JacobiRows {
     for (int k = 0; k < n; ++k) { wi[k] = w(row.idx[k]); dx[k] = p[k] - xs(row.idx[k]); }
     const real dl = xpbd_delta_lambda<5>(C, g, wi, dx, lambda(r), row.m, h);
     lambda(r) += dl;
-    for (int k = 0; k < 5; ++k) delta(5 * r + k) = (wi[k] * dl) * g[k];
+    for (int k = 0; k < n; ++k) delta(k * long(rows.extent(0)) + r) = (wi[k] * dl) * g[k];
   }
 };
 
