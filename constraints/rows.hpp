@@ -52,11 +52,28 @@ KOKKOS_INLINE_FUNCTION constexpr int row_kind_points(int kind) {
                               : 3;  // triarap, FEM
 }
 
-// C and gradients of a row of fixed kind K (not kRowPtPrim) from its particles' positions p.
+// f(std::integral_constant<int, K>{}) for K = kind (kRowKinds for a kind outside the enum): reaches code
+// compiled for one kind from a kind known at run time.
+template <class F>
+KOKKOS_INLINE_FUNCTION decltype(auto) with_row_kind(int kind, const F& f) {
+  switch (kind) {
+    case kRowDistance: return f(std::integral_constant<int, kRowDistance>{});
+    case kRowBend: return f(std::integral_constant<int, kRowBend>{});
+    case kRowTriarap: return f(std::integral_constant<int, kRowTriarap>{});
+    case kRowPin: return f(std::integral_constant<int, kRowPin>{});
+    case kRowAttach: return f(std::integral_constant<int, kRowAttach>{});
+    case kRowPtPrim: return f(std::integral_constant<int, kRowPtPrim>{});
+    case kRowFemDeviatoric: return f(std::integral_constant<int, kRowFemDeviatoric>{});
+    case kRowFemHydrostatic: return f(std::integral_constant<int, kRowFemHydrostatic>{});
+    default: return f(std::integral_constant<int, kRowKinds>{});
+  }
+}
+
+// C and gradients of a row of fixed kind K (not kRowPtPrim or kRowKinds) from its particles' positions p.
 template <int K, class Mem>
 KOKKOS_INLINE_FUNCTION real row_eval_of(const Row& r, const Vec3 (&p)[row_kind_points(K)], const RowContext<Mem>& ctx,
                                         Vec3 (&g)[row_kind_points(K)]) {
-  static_assert(K != kRowPtPrim, "point-primitive rows have a variable point count: row_eval");
+  static_assert(K != kRowPtPrim && K != kRowKinds, "point-primitive rows have a variable point count: row_eval");
   if constexpr (K == kRowDistance) {
     return distance_eval(p[0], p[1], r.rest, g);
   } else if constexpr (K == kRowBend) {
@@ -82,32 +99,26 @@ KOKKOS_INLINE_FUNCTION real row_eval_of(const Row& r, const Vec3 (&p)[row_kind_p
 // returns the number of particles (0: nothing to do).
 template <class Mem>
 KOKKOS_INLINE_FUNCTION int row_eval(const Row& r, const Vec3 (&p)[5], const RowContext<Mem>& ctx, real& C, Vec3 (&g)[5]) {
-  const auto fixed = [&](auto kind) {
-    constexpr int K = decltype(kind)::value, N = row_kind_points(K);
-    Vec3 pk[N], gk[N];
-    for (int k = 0; k < N; ++k) pk[k] = p[k];
-    C = row_eval_of<K>(r, pk, ctx, gk);
-    for (int k = 0; k < N; ++k) g[k] = gk[k];
-    return N;
-  };
-  switch (r.kind) {
-    case kRowDistance: return fixed(std::integral_constant<int, kRowDistance>{});
-    case kRowBend: return fixed(std::integral_constant<int, kRowBend>{});
-    case kRowTriarap: return fixed(std::integral_constant<int, kRowTriarap>{});
-    case kRowPin: return fixed(std::integral_constant<int, kRowPin>{});
-    case kRowAttach: return fixed(std::integral_constant<int, kRowAttach>{});
-    case kRowFemDeviatoric: return fixed(std::integral_constant<int, kRowFemDeviatoric>{});
-    case kRowFemHydrostatic: return fixed(std::integral_constant<int, kRowFemHydrostatic>{});
-    case kRowPtPrim: {
+  return with_row_kind(r.kind, [&](auto kind) -> int {
+    constexpr int K = decltype(kind)::value;
+    if constexpr (K == kRowKinds) {
+      return 0;
+    } else if constexpr (K == kRowPtPrim) {
       Vec3 t[4];
       const real w[4] = {r.data[0], r.data[1], r.data[2], r.data[3]};
       const int nt = r.n - 1;
       for (int k = 0; k < nt; ++k) t[k] = p[k + 1];
       C = ptprim_eval(p[0], t, w, nt, r.rest, g);
       return r.n;
+    } else {
+      constexpr int N = row_kind_points(K);
+      Vec3 pk[N], gk[N];
+      for (int k = 0; k < N; ++k) pk[k] = p[k];
+      C = row_eval_of<K>(r, pk, ctx, gk);
+      for (int k = 0; k < N; ++k) g[k] = gk[k];
+      return N;
     }
-  }
-  return 0;
+  });
 }
 
 // Solve one row in place (Gauss-Seidel): lambda accumulates; particles move by w g dlambda. No other row of its

@@ -241,20 +241,9 @@ class Solver {
   template <class Kernel>
   compat::GraphNode<Exec> kind_node(const compat::GraphNode<Exec>& after, const char* label, const KindRange& k,
                                     const Kernel& kernel) const {
-    const auto node = [&](auto kind) -> compat::GraphNode<Exec> {
+    return with_row_kind(k.kind, [&](auto kind) -> compat::GraphNode<Exec> {
       return after.then_parallel_for(label, Kokkos::RangePolicy<Exec>(exec_, k.begin, k.end), kernel(kind));
-    };
-    switch (k.kind) {
-      case kRowDistance: return node(std::integral_constant<int, kRowDistance>{});
-      case kRowBend: return node(std::integral_constant<int, kRowBend>{});
-      case kRowTriarap: return node(std::integral_constant<int, kRowTriarap>{});
-      case kRowPin: return node(std::integral_constant<int, kRowPin>{});
-      case kRowAttach: return node(std::integral_constant<int, kRowAttach>{});
-      case kRowPtPrim: return node(std::integral_constant<int, kRowPtPrim>{});
-      case kRowFemDeviatoric: return node(std::integral_constant<int, kRowFemDeviatoric>{});
-      case kRowFemHydrostatic: return node(std::integral_constant<int, kRowFemHydrostatic>{});
-      default: return node(std::integral_constant<int, kRowKinds>{});
-    }
+    });
   }
 
   // Fraction of its lag a pinned point held back by the crossing fail-safe closes per substep.

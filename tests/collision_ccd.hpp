@@ -301,18 +301,24 @@ void check_against_sampling(CcdKind kind, const std::vector<Vec3>& rows, real ms
   }
 }
 
+// n random queries in [-1, 1]^3, each moving by up to 1 per axis: 8 points per query (start, then end).
+std::vector<Vec3> random_queries(weft::test::TestRng& rng, int n) {
+  std::vector<Vec3> rows;
+  for (int q = 0; q < n; ++q) {
+    Vec3 x0[4];
+    for (auto& p : x0) p = {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)};
+    for (const auto& p : x0) rows.push_back(p);
+    for (const auto& p : x0) rows.push_back(p + Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)});
+  }
+  return rows;
+}
+
 TEST(WEFT_TEST_SUITE, ccd_random_queries_match_sampled_distance_and_host) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::test::TestRng rng(2021);
   for (CcdKind kind : {VF, EE}) {
     for (real ms : {0.0, 0.02, 0.2}) {
-      std::vector<Vec3> rows;
-      for (int q = 0; q < 300; ++q) {
-        Vec3 x0[4];
-        for (auto& p : x0) p = {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)};
-        for (const auto& p : x0) rows.push_back(p);
-        for (const auto& p : x0) rows.push_back(p + Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)});
-      }
+      const std::vector<Vec3> rows = random_queries(rng, 300);
       const auto res = device_ccd<Exec>(kind, rows, ms);
       EXPECT_EQ(count_mismatches<Exec>(kind, rows, ms, res), 0);
       long hits = 0;
@@ -332,13 +338,7 @@ TEST(WEFT_TEST_SUITE, ccd_first_hit_gives_the_same_answer) {
   first.first_hit = true;
   for (CcdKind kind : {VF, EE}) {
     for (real ms : {0.0, 0.05}) {
-      std::vector<Vec3> rows;
-      for (int q = 0; q < 300; ++q) {
-        Vec3 x0[4];
-        for (auto& p : x0) p = {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)};
-        for (const auto& p : x0) rows.push_back(p);
-        for (const auto& p : x0) rows.push_back(p + Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)});
-      }
+      const std::vector<Vec3> rows = random_queries(rng, 300);
       const auto full = device_ccd<Exec>(kind, rows, ms), fast = device_ccd<Exec>(kind, rows, ms, first);
       long hits = 0, later = 0;
       for (size_t q = 0; q < full.size(); ++q) {
