@@ -27,6 +27,16 @@ else
   say "Debian packages already installed (${#pkgs[@]})"
 fi
 
+# ---- Python for the report scripts (bench/reports/, tested by tests/report_scripts.py) ------------------
+py_mods="numpy h5py matplotlib"
+if python3 -c "import ${py_mods// /, }" 2>/dev/null; then
+  say "Python modules for the reports already installed ($py_mods)"
+elif python3 -m pip install --quiet $py_mods >/dev/null 2>&1; then
+  say "installed Python modules for the reports ($py_mods)"
+else
+  say "could not install $py_mods with pip: the report-script test will skip"
+fi
+
 # ---- Kokkos ------------------------------------------------------------------------------------------------
 if [ -n "${Kokkos_ROOT:-}" ]; then
   say "using the installed Kokkos at Kokkos_ROOT=$Kokkos_ROOT"
