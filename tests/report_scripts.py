@@ -118,11 +118,12 @@ def stability(weft, tmp):
     check("penetrating_points_max" in fc, "stability: the moving collider's inside points are counted")
     md = (out / "stability.md").read_text()
     check(all(c in md for c in cases), "stability: the table names every case")
-    # --strict exits 1 when a case fails; an unknown case is an error.
-    failing = [c["case"] for c in doc["cases"] if not c["pass"]]
-    if failing:
-        run("stability.py", "--weft", weft, "--out", tmp / "st-strict", "--cases", failing[0], "--res-scale", 0.1,
-            "--strict", expect=1)
+    # A run whose strain passes --diverge-strain is stopped as diverged and fails; --strict then exits 1.
+    run("stability.py", "--weft", weft, "--out", tmp / "st-strict", "--cases", "fast-collider", "--res-scale", 0.1,
+        "--diverge-strain", 1e-9, "--strict", expect=1)
+    c = json.loads((tmp / "st-strict" / "stability.json").read_text())["cases"][0]
+    check(c["status"] == "diverged" and not c["pass"], f"stability: a diverged run fails: {c['status']}")
+    # An unknown case is an error.
     r = run("stability.py", "--weft", weft, "--out", tmp / "st-bad", "--cases", "no-such-case", expect=1)
     check("no-such-case" in r.stderr, "stability: an unknown case is named")
 
