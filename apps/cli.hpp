@@ -30,6 +30,9 @@ void apply_self_collision(const std::string& value, bool& self_collision);
 // --contact-solver gauss-seidel|jacobi (run, bench): overrides the scene's jacobi_contacts when not empty.
 void add_contact_solver_option(CLI::App* cmd, std::string& value);
 void apply_contact_solver(const std::string& value, bool& jacobi_contacts);
+// --ccd-span substep|pass (run, bench): overrides the scene's ccd_per_pass when not empty.
+void add_ccd_span_option(CLI::App* cmd, std::string& value);
+void apply_ccd_span(const std::string& value, bool& ccd_per_pass);
 
 // Prints `weft: warning: SCENE: ...` on stderr for each cloth piece too thick for its triangles
 // (thickness_warnings, core/scene.hpp); the run goes on.

@@ -11,7 +11,7 @@ namespace weft::cli {
 namespace {
 
 struct Options {
-  std::string scene, schedules = "current", json, self_collision, contact_solver;
+  std::string scene, schedules = "current", json, self_collision, contact_solver, ccd_span;
   int res = 0, frames = 10, warmup = 2;
 };
 
@@ -68,15 +68,17 @@ int bench(const GlobalOptions& g, const Options& o) {
   Scene scene = io::load_scene(o.scene, io::BuiltinOptions{o.res});
   apply_self_collision(o.self_collision, scene.settings.self_collision);
   apply_contact_solver(o.contact_solver, scene.settings.jacobi_contacts);
+  apply_ccd_span(o.ccd_span, scene.settings.ccd_per_pass);
   warn_about_thickness(scene);
   std::vector<Schedule> schedules;
   if (o.schedules == "paper") schedules = {{"paper-1", 200, 20, 1}, {"paper-2", 20, 2, 10}, {"paper-3", 10, 1, 20}};
   else if (o.schedules == "current") schedules = {{"scene", 0, 0, 0}};
   else throw Error("--schedules is 'paper' or 'current'", 2);
   const char* contacts = scene.settings.jacobi_contacts ? "jacobi" : "gauss-seidel";
-  std::printf("%s: %zu points, %zu triangles, backend %s, %s contacts, %d frames after %d warm-up (stage times "
-              "fenced)\n", scene.name.c_str(), scene.points.size(), scene.triangles.size(), backend_name(b), contacts,
-              o.frames, o.warmup);
+  const char* span = scene.settings.ccd_per_pass ? "pass" : "substep";
+  std::printf("%s: %zu points, %zu triangles, backend %s, %s contacts, CCD span %s, %d frames after %d warm-up "
+              "(stage times fenced)\n", scene.name.c_str(), scene.points.size(), scene.triangles.size(), backend_name(b),
+              contacts, span, o.frames, o.warmup);
   std::printf("%-9s %5s %5s %5s %10s %12s %13s %10s %10s %10s %8s %10s %9s\n", "schedule", "iter", "pass", "sub",
               "ms/frame", "constraints", "ms/col.pass", "contacts", "smoothing", "fail-safe", "rounds", "#contacts",
               "mem MiB");
@@ -93,7 +95,8 @@ int bench(const GlobalOptions& g, const Options& o) {
   }
   if (!o.json.empty()) io::write_file_atomically(o.json, [&](std::ostream& out) {
     out << "{\"scene\": \"" << scene.name << "\", \"triangles\": " << scene.triangles.size() << ", \"backend\": \""
-        << backend_name(b) << "\", \"contact_solver\": \"" << contacts << "\", \"results\": [";
+        << backend_name(b) << "\", \"contact_solver\": \"" << contacts << "\", \"ccd_span\": \"" << span
+        << "\", \"results\": [";
     for (size_t i = 0; i < results.size(); ++i) {
       const Result& r = results[i];
       out << (i ? ", " : "") << "{\"schedule\": \"" << r.schedule << "\", \"iterations\": " << r.iterations
@@ -122,6 +125,7 @@ void add_bench(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_option("--json", o->json, "also write the results as JSON");
   add_self_collision_option(cmd, o->self_collision);
   add_contact_solver_option(cmd, o->contact_solver);
+  add_ccd_span_option(cmd, o->ccd_span);
   cmd->callback([&g, &action, o] { action = [&g, o] { return bench(g, *o); }; });
 }
 

@@ -61,6 +61,7 @@ std::string resume_command(const RunOptions& o) {
   if (o.no_failsafe) c += " --no-failsafe";
   opt("--self-collision", o.self_collision);
   opt("--contact-solver", o.contact_solver);
+  opt("--ccd-span", o.ccd_span);
   return c + " -o " + o.output + " --resume";
 }
 
@@ -159,6 +160,7 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   if (o.no_failsafe) st.collision_failsafe = false;
   apply_self_collision(o.self_collision, st.self_collision);
   apply_contact_solver(o.contact_solver, st.jacobi_contacts);
+  apply_ccd_span(o.ccd_span, st.ccd_per_pass);
   warn_about_thickness(scene);
   if (o.clean) {  // the solvability check (docs/solvability.md) replaces the colliders by cleaned ones
     const BodyCleaning c = clean_body(b, scene);
@@ -260,6 +262,7 @@ void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_flag("--no-failsafe", o->no_failsafe, "switch off the crossing fail-safe (docs/collisions.md)");
   add_self_collision_option(cmd, o->self_collision);
   add_contact_solver_option(cmd, o->contact_solver);
+  add_ccd_span_option(cmd, o->ccd_span);
   cmd->add_flag("--hash", o->hash, "print 'hash <16 hex digits>' of every frame's positions as the last line");
   cmd->add_flag("--quiet", o->quiet, "no per-frame lines");
   cmd->add_option("-o,--output", o->output, "HDF5 cache written frame by frame (readable while the run goes on)");

@@ -45,6 +45,17 @@ void apply_contact_solver(const std::string& value, bool& jacobi_contacts) {
   if (!value.empty()) jacobi_contacts = value == "jacobi";
 }
 
+void add_ccd_span_option(CLI::App* cmd, std::string& value) {
+  cmd->add_option("--ccd-span", value,
+                  "substep (every collision pass tests the motion since the substep's start) | pass (a later "
+                  "pass only the motion since the previous pass) (default: the scene's)")
+      ->check(CLI::IsMember({"substep", "pass"}));
+}
+
+void apply_ccd_span(const std::string& value, bool& ccd_per_pass) {
+  if (!value.empty()) ccd_per_pass = value == "pass";
+}
+
 void warn_about_thickness(const Scene& s) {
   for (const std::string& w : thickness_warnings(s)) std::fprintf(stderr, "weft: warning: %s: %s\n", s.name.c_str(), w.c_str());
 }

@@ -59,6 +59,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
     sweeps_ = st.impact_zone_sweeps;
     failsafe_ = st.collision_failsafe;
     jacobi_ = st.jacobi_contacts;
+    per_pass_ = st.ccd_per_pass && st.collision_passes > 1;
+    passes_ = st.collision_passes;
     profile_ = st.profile;
     // Cloth side.
     cloth_tris_ = upload_tris(s.triangles);
@@ -99,25 +101,39 @@ class CollisionHandler final : public CollisionStage<Exec> {
 
   // The trees are built once per frame; every pass refits them first.
   void begin_substep(const SolverState<Exec>& s, real, int substep) override {
+    pass_in_substep_ = 0;
     if (substep != 0) return;
     timed(stats_.seconds_lbvh_build, [&] {
-      update_boxes(s, cloth_margin_);
+      update_boxes(s.exec, cloth_side(s), collider_side(s), cloth_margin_);
       cloth_bvh_.build(cloth_boxes_);
       if (collider_boxes_.extent(0) > 0) collider_bvh_.build(collider_boxes_);
     });
   }
 
+  // With ccd_per_pass, a pass after the first of its substep tests the motion since the previous pass
+  // (x_pass_ to x; colliders do not move within a substep): a later pass then sweeps its boxes and runs its
+  // CCD over the constraint iterations' corrections only, not over the whole substep again. Contacts keep
+  // the side their points had at the start of the substep (SideMesh::xo).
   void pass(const SolverState<Exec>& s, real) override {
+    SideMesh<Mem> cloth = cloth_side(s), collider = collider_side(s);
+    if (per_pass_ && pass_in_substep_ > 0) {
+      cloth.xs = x_pass_;
+      collider.xs = collider.x;
+    }
     timed(stats_.seconds_broad_phase, [&] {
-      update_boxes(s, cloth_margin_);
+      update_boxes(s.exec, cloth, collider, cloth_margin_);
       cloth_bvh_.refit(cloth_boxes_);
       if (collider_boxes_.extent(0) > 0) collider_bvh_.refit(collider_boxes_);
     });
-    const SideMesh<Mem> cloth = cloth_side(s);
     long n = 0;
     if (self_) n += narrow(cloth, cloth, /*self*/ true, n);
-    if (collider_boxes_.extent(0) > 0) n += narrow(cloth, collider_side(s), false, n);
+    if (collider_boxes_.extent(0) > 0) n += narrow(cloth, collider, false, n);
     ncontacts_ = n;
+    if (per_pass_ && ++pass_in_substep_ < passes_) {
+      if (x_pass_.extent(0) != s.x.extent(0))
+        x_pass_ = View<Vec3*>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::x_pass"), s.x.extent(0));
+      Kokkos::deep_copy(s.exec, x_pass_, s.x);
+    }
     if (jacobi_) offsets_ = {0};  // Jacobi needs no colours
     else timed(stats_.seconds_contact_colouring, [&] { offsets_ = colouring_.colour(s.exec, contacts_, n, s.w); });
     stats_.contacts = n;
@@ -138,7 +154,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   // The crossing fail-safe over fresh candidate pairs (boxes from x_start to the final x).
   void finish_positions(const SolverState<Exec>& s, real) override {
     if (!failsafe_) return;
-    update_boxes(s, cloth_failsafe_margin_);
+    update_boxes(s.exec, cloth_side(s), collider_side(s), cloth_failsafe_margin_);
     cloth_bvh_.refit(cloth_boxes_);
     long nself = 0, ncollider = 0;
     if (self_) nself = cloth_bvh_.query_self(KeepAllPairs{}, pairs_);
@@ -220,31 +236,33 @@ class CollisionHandler final : public CollisionStage<Exec> {
   }
 
  public:  // kernels below launch device lambdas, which CUDA allows only in public member functions
-  // Swept boxes from x_start to x: cloth boxes inflated by `cloth_margin` (per triangle), collider boxes by
-  // the contact margin.
-  void update_boxes(const SolverState<Exec>& s, const View<real*>& cloth_margin) {
-    swept_triangle_boxes(s.exec, View<const Vec3*>(s.x_start), View<const Vec3*>(s.x), View<const int* [3]>(cloth_tris_),
-                         View<const real*>(cloth_margin), cloth_boxes_);
+  // Swept boxes from each side's xs to x: cloth boxes inflated by `cloth_margin` (per triangle), collider
+  // boxes by the contact margin.
+  void update_boxes(const Exec& exec, const SideMesh<Mem>& cloth, const SideMesh<Mem>& collider, const View<real*>& cloth_margin) {
+    swept_triangle_boxes(exec, cloth.xs, cloth.x, View<const int* [3]>(cloth_tris_), View<const real*>(cloth_margin),
+                         cloth_boxes_);
     if (collider_boxes_.extent(0) > 0)
-      swept_triangle_boxes(s.exec, View<const Vec3*>(s.collider_x_start), View<const Vec3*>(s.collider_x),
-                           View<const int* [3]>(collider_tris_), ns_.detect_scale * collider_th_, collider_boxes_);
+      swept_triangle_boxes(exec, collider.xs, collider.x, View<const int* [3]>(collider_tris_),
+                           ns_.detect_scale * collider_th_, collider_boxes_);
   }
   SideMesh<Mem> cloth_side(const SolverState<Exec>& s) const {
     SideMesh<Mem> m;
-    m.x = s.x; m.xs = s.x_start; m.tris = cloth_tris_; m.rmask = cloth_rmask_; m.thickness = cloth_th_;
+    m.x = s.x; m.xs = s.x_start; m.xo = s.x_start; m.tris = cloth_tris_; m.rmask = cloth_rmask_; m.thickness = cloth_th_;
     m.friction = cloth_fr_; m.dfriction = cloth_dfr_; m.layer = cloth_layer_;
     return m;
   }
   SideMesh<Mem> collider_side(const SolverState<Exec>& s) const {
     SideMesh<Mem> m;
-    m.x = s.collider_x; m.xs = s.collider_x_start; m.tris = collider_tris_; m.rmask = collider_rmask_;
+    m.x = s.collider_x; m.xs = s.collider_x_start; m.xo = s.collider_x_start; m.tris = collider_tris_; m.rmask = collider_rmask_;
     m.neighbour = collider_nb_; m.uniform_thickness = collider_th_; m.uniform_friction = collider_fr_; m.collider = true;
     return m;
   }
 
  private:
   NarrowSettings ns_;
-  bool self_ = true, smoothing_ = true, failsafe_ = true, profile_ = false, jacobi_ = false;
+  bool self_ = true, smoothing_ = true, failsafe_ = true, profile_ = false, jacobi_ = false, per_pass_ = false;
+  int passes_ = 1, pass_in_substep_ = 0;
+  View<Vec3*> x_pass_;  // cloth positions at the previous pass of the substep (ccd_per_pass)
   real epsilon_ = 0.1;
   int sweeps_ = 4;
   long ncontacts_ = 0;

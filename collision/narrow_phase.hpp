@@ -12,10 +12,12 @@
 
 namespace weft {
 
-// One side of a pair: a cloth or collider mesh at the start (xs) and end (x) of the substep.
+// One side of a pair: a cloth or collider mesh at the start (xs) and end (x) of the motion tested, and at
+// the start of the substep (xo), which decides the side of a two-sided contact. xs is xo unless collision
+// passes test only the motion since the previous pass (SolverSettings::ccd_per_pass).
 template <class Mem>
 struct SideMesh {
-  Kokkos::View<const Vec3*, Mem> x, xs;
+  Kokkos::View<const Vec3*, Mem> x, xs, xo;
   Kokkos::View<const int* [3], Mem> tris;
   Kokkos::View<const uint8_t*, Mem> rmask;       // representative features per triangle
   Kokkos::View<const real*, Mem> thickness;      // per point (cloth) or empty (collider: `uniform`)
@@ -285,7 +287,7 @@ KOKKOS_INLINE_FUNCTION Contact make_vf(const SideMesh<Mem>& P, int p, const Side
   c.r = P.th(p) + face_th(F, f);
   Vec3 n = F.face_normal(f);
   if (!F.collider) {  // cloth faces are two-sided: keep the side the point started on
-    const Vec3 d0 = P.xs(p) - (u * F.xs(a) + v * F.xs(b) + w * F.xs(c3));
+    const Vec3 d0 = P.xo(p) - (u * F.xo(a) + v * F.xo(b) + w * F.xo(c3));
     if (dot(n, d0) < 0) n = -n;
   }
   c.n = n;
@@ -323,7 +325,7 @@ KOKKOS_INLINE_FUNCTION Contact make_ee(const SideMesh<Mem>& SA, int A, int ka, c
     n = -dihedral_normal(SA, A, ka);
   } else {
     n = normalized(cross(SA.x(a1) - SA.x(a0), SB.x(b1) - SB.x(b0)));
-    const Vec3 d0 = ((1 - sa) * SA.xs(a0) + sa * SA.xs(a1)) - ((1 - tb) * SB.xs(b0) + tb * SB.xs(b1));
+    const Vec3 d0 = ((1 - sa) * SA.xo(a0) + sa * SA.xo(a1)) - ((1 - tb) * SB.xo(b0) + tb * SB.xo(b1));
     if (dot(n, d0) < 0) n = -n;  // sign from the start of the substep
   }
   c.n = n;

@@ -58,6 +58,7 @@ weft::SideMesh<typename Exec::memory_space> side_of(const Sheets& s) {
   weft::SideMesh<Mem> side;
   side.x = to_device<Exec>(s.x, "x");
   side.xs = to_device<Exec>(s.xs, "xs");
+  side.xo = side.xs;
   side.tris = tris;
   side.rmask = to_device<Exec>(weft::representative_features(s.tris, int(np)), "rmask");
   side.thickness = to_device<Exec>(std::vector<real>(np, real(0.001)), "thickness");

@@ -62,7 +62,7 @@ struct ClothLayers {
   // The cloth as the narrow phase sees it (CollisionHandler::cloth_side).
   SideMesh<Mem> side() const {
     SideMesh<Mem> m;
-    m.x = x; m.xs = xs; m.tris = tris; m.rmask = rmask; m.thickness = thickness;
+    m.x = x; m.xs = xs; m.xo = xs; m.tris = tris; m.rmask = rmask; m.thickness = thickness;
     m.friction = friction; m.dfriction = friction; m.layer = layer;
     return m;
   }
