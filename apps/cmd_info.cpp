@@ -32,7 +32,8 @@ void print_settings(const SolverSettings& s) {
             << "  impact zone smoothing " << (s.impact_zone_smoothing ? "on" : "off") << " (epsilon "
             << s.impact_zone_epsilon << ", " << s.impact_zone_sweeps << " sweeps), crossing fail-safe "
             << (s.collision_failsafe ? "on" : "off") << ", contact solver "
-            << (s.jacobi_contacts ? "jacobi" : "gauss-seidel") << "\n";
+            << (s.jacobi_contacts ? "jacobi" : "gauss-seidel") << ", CCD span "
+            << (s.ccd_per_pass ? "pass" : "substep") << "\n";
 }
 
 void print_scene(const std::string& path) {

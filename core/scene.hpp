@@ -32,7 +32,7 @@ struct SolverSettings {
   int impact_zone_sweeps = 4;
   bool collision_failsafe = true;        // move back points whose motion would cross cloth (collision/crossing_failsafe.hpp)
   bool jacobi_contacts = false;          // contacts projected Jacobi-style (averaged) instead of by colours
-  bool ccd_per_pass = false;             // a later collision pass tests the motion since the previous pass only
+  bool ccd_per_pass = true;              // a later collision pass tests only the motion since the previous pass
   bool profile = false;                  // time each stage (fences between stages)
 };
 

@@ -151,7 +151,7 @@ std::string resolve(const std::string& json_path, const std::string& file) {
 
 void read_settings(const Node& n, Scene& s) {
   n.object({"fps", "frames", "substeps", "iterations", "collision_passes", "smoothing", "gravity", "wind", "damping",
-            "impact_zone_smoothing", "collision_failsafe", "contact_solver", "collisions"});
+            "impact_zone_smoothing", "collision_failsafe", "contact_solver", "ccd_span", "collisions"});
   SolverSettings& st = s.settings;
   st.fps = n.number("fps", st.fps, Range::Positive);
   if (n.has("frames")) {
@@ -173,6 +173,11 @@ void read_settings(const Node& n, Scene& s) {
     const std::string v = n["contact_solver"].string();
     if (v != "gauss-seidel" && v != "jacobi") n["contact_solver"].fail("expected \"gauss-seidel\" or \"jacobi\"");
     st.jacobi_contacts = v == "jacobi";
+  }
+  if (n.has("ccd_span")) {
+    const std::string v = n["ccd_span"].string();
+    if (v != "substep" && v != "pass") n["ccd_span"].fail("expected \"substep\" or \"pass\"");
+    st.ccd_per_pass = v == "pass";
   }
   if (n.has("collisions")) s.needs_collisions = n["collisions"].boolean();
 }

@@ -43,6 +43,7 @@ const std::pair<const char*, bool SolverSettings::*> kBoolSettings[] = {
     {"impact_zone_smoothing", &SolverSettings::impact_zone_smoothing},
     {"collision_failsafe", &SolverSettings::collision_failsafe},
     {"jacobi_contacts", &SolverSettings::jacobi_contacts},
+    {"ccd_per_pass", &SolverSettings::ccd_per_pass},
     {"profile", &SolverSettings::profile},
 };
 const std::pair<const char*, Vec3 SolverSettings::*> kVecSettings[] = {
@@ -340,6 +341,8 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
   for (const auto& [name, m] : kBoolSettings) {
     // Added after the first files of this format version were written: absent means the default.
     const bool optional = std::strcmp(name, "collision_failsafe") == 0 || std::strcmp(name, "jacobi_contacts") == 0;
+    // Absent in files written before it existed, whose passes all tested the whole substep.
+    if (std::strcmp(name, "ccd_per_pass") == 0 && !h5::has_attribute(f, group, name)) { s.*m = false; continue; }
     if (optional && !h5::has_attribute(f, group, name)) continue;
     s.*m = h5::read_attribute<int>(f, group, name) != 0;
   }

@@ -500,4 +500,21 @@ TEST(WEFT_TEST_SUITE, cli_contact_solver_switch_is_recorded_and_resumed) {
   EXPECT_NE(weft.output.find("--contact-solver"), std::string::npos) << weft.output;
 }
 
+TEST(WEFT_TEST_SUITE, cli_ccd_span_switch_is_recorded_and_resumed) {
+  WEFT_NEED_CLI();
+  const CacheDir dir("cli_ccd_span");
+  Cli weft(dir);
+  const std::string stack = "run builtin:layer-stack --res 4 --quiet";
+  const std::string span = SolverSettings{}.ccd_per_pass ? "substep" : "pass";  // not the default
+  const std::string run = stack + " --ccd-span " + span + " -o " + dir.file("c.h5");
+  ASSERT_EQ(weft(run + " --frames 1-4"), 0) << weft.output;
+  ASSERT_EQ(weft("info " + dir.file("c.h5")), 0) << weft.output;
+  EXPECT_NE(weft.output.find("CCD span " + span), std::string::npos) << weft.output;
+  EXPECT_EQ(weft(stack + " --frames 1-6 --resume -o " + dir.file("c.h5")), 2);
+  EXPECT_NE(weft.output.find("another ccd_per_pass setting"), std::string::npos) << weft.output;
+  ASSERT_EQ(weft(run + " --frames 1-6 --resume"), 0) << weft.output;
+  EXPECT_NE(weft(stack + " --frames 1-2 --ccd-span frame"), 0);
+  EXPECT_NE(weft.output.find("--ccd-span"), std::string::npos) << weft.output;
+}
+
 }  // namespace

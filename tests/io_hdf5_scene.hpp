@@ -75,6 +75,7 @@ Scene every_kind_scene() {
   st.impact_zone_epsilon = 0.2;
   st.impact_zone_sweeps = 3;
   st.jacobi_contacts = true;
+  st.ccd_per_pass = !SolverSettings{}.ccd_per_pass;
   st.profile = true;
   return s;
 }
@@ -180,7 +181,7 @@ void expect_identical(const Scene& a, const Scene& b) {
               s.iterations == t.iterations && s.collision_passes == t.collision_passes &&
               s.smoothing_iterations == t.smoothing_iterations && s.impact_zone_sweeps == t.impact_zone_sweeps &&
               s.self_collision == t.self_collision && s.impact_zone_smoothing == t.impact_zone_smoothing &&
-              s.jacobi_contacts == t.jacobi_contacts && s.profile == t.profile);
+              s.jacobi_contacts == t.jacobi_contacts && s.ccd_per_pass == t.ccd_per_pass && s.profile == t.profile);
   EXPECT_TRUE(differing_settings(s, t).empty());
 }
 
