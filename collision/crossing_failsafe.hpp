@@ -36,6 +36,10 @@ KOKKOS_INLINE_FUNCTION CcdSettings ccd_settings(real r, const CrossingSettings& 
   return CcdSettings{max_(real(1e-6), s.tolerance_scale * r), s.max_iterations, /*first_hit*/ true};
 }
 
+// The farthest apart two triangles of combined thickness r can be and still be flagged: the crossing CCD
+// reports pairs within its tolerance.
+KOKKOS_INLINE_FUNCTION real crossing_reach(real r, const CrossingSettings& s) { return s.tolerance_scale * r + real(1e-6); }
+
 }  // namespace failsafe_detail
 
 // The margin of a triangle's swept box for the fail-safe's broad phase (`thickness`: the largest of its
@@ -99,33 +103,37 @@ struct CrossingTests {
     const int ta_i = pairs(i).first, tb_i = pairs(i).second;
     const int ta[3] = {A.tris(ta_i, 0), A.tris(ta_i, 1), A.tris(ta_i, 2)};
     const int tb[3] = {B.tris(tb_i, 0), B.tris(tb_i, 1), B.tris(tb_i, 2)};
-    uint32_t o = 0;
     bool changed = all;
     for (int k = 0; k < 3; ++k)
       changed = changed || moved_back_in(A, ta[k], back, round - 1) || moved_back_in(B, tb[k], back, round - 1);
-    if (changed) {
-      const uint8_t ra = A.rmask(ta_i), rb = B.rmask(tb_i);
-      const real fa = narrow_detail::face_th(A, ta_i), fb = narrow_detail::face_th(B, tb_i);
-      for (int k = 0; k < 3; ++k) {
-        const int p = ta[k], q = tb[k];
-        if (((ra >> k) & 1) && !(self && (p == tb[0] || p == tb[1] || p == tb[2])) && vf_may_cross(A, p, B, tb_i, A.th(p) + fb, cs))
-          o |= 1u << k;
-        if (((rb >> k) & 1) && !(self && (q == ta[0] || q == ta[1] || q == ta[2])) && vf_may_cross(B, q, A, ta_i, B.th(q) + fa, cs))
-          o |= 1u << (3 + k);
-      }
-      for (int ka = 0; ka < 3; ++ka) {
-        if (!((ra >> (3 + ka)) & 1)) continue;
-        const int a0 = ta[ka], a1 = ta[(ka + 1) % 3];
-        for (int kb = 0; kb < 3; ++kb) {
-          if (!((rb >> (3 + kb)) & 1)) continue;
-          const int b0 = tb[kb], b1 = tb[(kb + 1) % 3];
-          if (self && narrow_detail::shares(a0, a1, b0, b1)) continue;
-          const real r = max_(A.th(a0), A.th(a1)) + max_(B.th(b0), B.th(b1));
-          if (ee_may_cross(A, a0, a1, B, b0, b1, r, cs)) o |= 1u << (6 + 3 * ka + kb);
-        }
+    open(i) = changed ? open_features(ta_i, ta, tb_i, tb) : 0u;
+  }
+
+  // The feature pairs of triangles ta_i and tb_i that may cross.
+  KOKKOS_INLINE_FUNCTION uint32_t open_features(int ta_i, const int (&ta)[3], int tb_i, const int (&tb)[3]) const {
+    const real fa = narrow_detail::face_th(A, ta_i), fb = narrow_detail::face_th(B, tb_i);
+    if (narrow_detail::swept_apart(A, ta, B, tb, crossing_reach(fa + fb, cs))) return 0;
+    uint32_t o = 0;
+    const uint8_t ra = A.rmask(ta_i), rb = B.rmask(tb_i);
+    for (int k = 0; k < 3; ++k) {
+      const int p = ta[k], q = tb[k];
+      if (((ra >> k) & 1) && !(self && (p == tb[0] || p == tb[1] || p == tb[2])) && vf_may_cross(A, p, B, tb_i, A.th(p) + fb, cs))
+        o |= 1u << k;
+      if (((rb >> k) & 1) && !(self && (q == ta[0] || q == ta[1] || q == ta[2])) && vf_may_cross(B, q, A, ta_i, B.th(q) + fa, cs))
+        o |= 1u << (3 + k);
+    }
+    for (int ka = 0; ka < 3; ++ka) {
+      if (!((ra >> (3 + ka)) & 1)) continue;
+      const int a0 = ta[ka], a1 = ta[(ka + 1) % 3];
+      for (int kb = 0; kb < 3; ++kb) {
+        if (!((rb >> (3 + kb)) & 1)) continue;
+        const int b0 = tb[kb], b1 = tb[(kb + 1) % 3];
+        if (self && narrow_detail::shares(a0, a1, b0, b1)) continue;
+        const real r = max_(A.th(a0), A.th(a1)) + max_(B.th(b0), B.th(b1));
+        if (ee_may_cross(A, a0, a1, B, b0, b1, r, cs)) o |= 1u << (6 + 3 * ka + kb);
       }
     }
-    open(i) = o;
+    return o;
   }
 };
 

@@ -3,7 +3,9 @@
 #include "collision/narrow_pipeline.hpp"
 #include "collision/representative.hpp"
 
+#include <cmath>
 #include <cstring>
+#include <random>
 #include <vector>
 
 namespace {
@@ -122,6 +124,75 @@ TEST(WEFT_TEST_SUITE, narrow_phase_kernels_match_testing_pair_by_pair) {
     ASSERT_EQ(total, n) << "chunk " << chunk;
     for (long i = 0; i < n; ++i) ASSERT_TRUE(same_bits(got[i], expected(i))) << "contact " << i << ", chunk " << chunk;
   }
+}
+
+// swept_apart, the narrow phase's and the fail-safe's first cut of a candidate pair: whenever it says two
+// moving triangles stay farther apart than the reach, no vertex-face or edge-edge pair of them comes that
+// close at any time of the motion (sampled); and it does cut layers apart, never touching neighbours.
+TEST(WEFT_TEST_SUITE, swept_apart_pairs_never_come_within_reach) {
+  using Host = Kokkos::HostSpace;
+  std::vector<Vec3> xs(6), x(6);
+  Kokkos::View<int* [3], Host> tris("tris", 2);
+  for (int k = 0; k < 3; ++k) { tris(0, k) = k; tris(1, k) = 3 + k; }
+  weft::SideMesh<Host> m;
+  m.tris = tris;
+  const int ta[3] = {0, 1, 2}, tb[3] = {3, 4, 5};
+  const auto apart = [&](real reach) {
+    m.x = Kokkos::View<const Vec3*, Host>(x.data(), 6);
+    m.xs = Kokkos::View<const Vec3*, Host>(xs.data(), 6);
+    return weft::narrow_detail::swept_apart(m, ta, m, tb, reach);
+  };
+  // The closest any feature pair of the two comes, at 65 times of the motion.
+  const auto closest = [&] {
+    real d2 = 1e300, u, v, w;
+    for (int i = 0; i <= 64; ++i) {
+      const real t = real(i) / 64;
+      Vec3 p[6];
+      for (int k = 0; k < 6; ++k) p[k] = xs[k] + t * (x[k] - xs[k]);
+      for (int k = 0; k < 3; ++k) {
+        d2 = std::min(d2, weft::point_triangle_distance2(p[k], p[3], p[4], p[5], u, v, w));
+        d2 = std::min(d2, weft::point_triangle_distance2(p[3 + k], p[0], p[1], p[2], u, v, w));
+        for (int j = 0; j < 3; ++j)
+          d2 = std::min(d2, weft::segment_segment_distance2(p[k], p[(k + 1) % 3], p[3 + j], p[3 + (j + 1) % 3], u, v));
+      }
+    }
+    return std::sqrt(d2);
+  };
+  std::mt19937_64 rng(15);
+  std::uniform_real_distribution<real> U(-1, 1);
+  const auto rand3 = [&](real s) { return Vec3{s * U(rng), s * U(rng), s * U(rng)}; };
+  int cut = 0, kept = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Vec3 ca = rand3(0.01), cb = ca + rand3(0.01) + Vec3{0, 0, real(0.004) * U(rng)};
+    for (int k = 0; k < 3; ++k) {
+      xs[k] = ca + rand3(0.005);
+      xs[3 + k] = cb + rand3(0.005);
+    }
+    const Vec3 ma = rand3(trial % 2 ? 0.001 : 0.01), mb = rand3(trial % 2 ? 0.001 : 0.01);
+    for (int k = 0; k < 3; ++k) {
+      x[k] = xs[k] + ma + rand3(0.0005);
+      x[3 + k] = xs[3 + k] + mb + rand3(0.0005);
+    }
+    const real reach = real(0.0005) + real(0.002) * (U(rng) + 1);
+    if (apart(reach)) {
+      ++cut;
+      ASSERT_GT(closest(), reach) << "trial " << trial;
+    } else {
+      ++kept;
+    }
+  }
+  EXPECT_GT(cut, 1000);
+  EXPECT_GT(kept, 1000);
+  // Two resting layers 3 thicknesses apart are cut at a reach of 2.5; neighbours sharing a corner never are.
+  for (int k = 0; k < 3; ++k) {
+    xs[k] = x[k] = Vec3{real(0.01) * (k == 1), real(0.01) * (k == 2), 0};
+    xs[3 + k] = x[3 + k] = xs[k] + Vec3{real(0.003), real(0.002), real(0.003)};
+  }
+  EXPECT_TRUE(apart(0.0025));
+  EXPECT_FALSE(apart(0.0031));
+  for (int k = 0; k < 3; ++k) xs[3 + k] = x[3 + k] = Vec3{real(0.01) * (k != 0), real(0.01) * (k == 1), 0} * real(-1);
+  xs[3] = x[3] = xs[0];
+  EXPECT_FALSE(apart(1e-9));
 }
 
 }  // namespace
