@@ -4,8 +4,7 @@
 // Build: Morton codes of the box centres within the bounds of the centres, made unique by the primitive
 // index (collision/morton.hpp), sorted; Karras' construction links the internal nodes from the sorted keys.
 // Refit: node boxes bottom-up from new leaf boxes, same topology. Queries: every overlapping pair, written by
-// count -> exclusive scan -> fill, so the output order depends on the data only, never on the backend; the
-// counting walk keeps a query's first 32 pairs, so the fill walks again only for queries with more.
+// count -> exclusive scan -> fill, so the output order depends on the data only, never on the backend.
 //
 // Traversal is stackless: every node stores its rope (the next node in depth-first, left-first order once
 // its subtree is done), so no stack can overflow whatever the tree's depth, and the leaves are met in
@@ -32,8 +31,8 @@ struct IndexPair {
 };
 
 // Query predicate that keeps every pair. A predicate is a copyable device functor with
-// `bool operator()(int first, int second) const` (true: keep); it may be called twice per pair (count,
-// fill), so it must give the same answer both times.
+// `bool operator()(int first, int second) const` (true: keep); it is called twice per pair (count, fill),
+// so it must give the same answer both times.
 struct KeepAllPairs {
   KOKKOS_INLINE_FUNCTION bool operator()(int, int) const { return true; }
 };
@@ -345,23 +344,14 @@ struct PairQuery {
   }
 };
 
-// Pairs a query keeps from its counting walk (slot c of query k at kept(c * m + k), so a warp's writes
-// lie side by side); a query with more walks again to write them.
-constexpr long kKeptPairs = 32;
-
-// Counts per query into offsets(k), keeping the first kKeptPairs pairs.
+// Counts per query into offsets(k).
 template <class Mem, class Pred, bool Self>
 struct PairCount {
   PairQuery<Mem, Pred, Self> q;
   Kokkos::View<long*, Mem> offsets;
-  Kokkos::View<IndexPair*, Mem> kept;
-  long m;
   KOKKOS_INLINE_FUNCTION void operator()(long k) const {
     long c = 0;
-    q.visit(k, [&](int a, int b) {
-      if (c < kKeptPairs) kept(c * m + k) = IndexPair{a, b};
-      ++c;
-    });
+    q.visit(k, [&](int, int) { ++c; });
     offsets(k) = c;
   }
 };
@@ -375,22 +365,14 @@ struct PairTotal {
   }
 };
 
-// Writes query k's pairs from its scanned offset: the kept ones copied, more by walking again.
 template <class Mem, class Pred, bool Self>
 struct PairFill {
   PairQuery<Mem, Pred, Self> q;
   Kokkos::View<long*, Mem> offsets;
-  Kokkos::View<const IndexPair*, Mem> kept;
   Kokkos::View<IndexPair*, Mem> out;
-  long m, total;
   KOKKOS_INLINE_FUNCTION void operator()(long k) const {
     long o = offsets(k);
-    const long c = (k + 1 < m ? offsets(k + 1) : total) - o;
-    if (c <= kKeptPairs) {
-      for (long i = 0; i < c; ++i) out(o + i) = kept(i * m + k);
-    } else {
-      q.visit(k, [&](int a, int b) { out(o++) = IndexPair{a, b}; });
-    }
+    q.visit(k, [&](int a, int b) { out(o++) = IndexPair{a, b}; });
   }
 };
 
@@ -502,14 +484,13 @@ class Lbvh {
   template <class Pred, bool Self>
   long pairs_of(long m, BoxView queries, const Pred& pred, PairView& pairs) {
     lbvh_detail::reserve(offsets_, m, "weft::lbvh_offsets");
-    lbvh_detail::reserve(kept_, m * lbvh_detail::kKeptPairs, "weft::lbvh_kept_pairs");
     const lbvh_detail::PairQuery<Mem, Pred, Self> q{nodes(), queries, pred};
-    Kokkos::parallel_for(Self ? "weft::lbvh_self_count" : "weft::lbvh_query_count", Kokkos::RangePolicy<Exec>(exec_, 0, m),
-                         lbvh_detail::PairCount<Mem, Pred, Self>{q, offsets_, kept_, m});
+    Kokkos::parallel_for(Self ? "weft::lbvh_self_count" : "weft::lbvh_query_count",
+                         Kokkos::RangePolicy<Exec>(exec_, 0, m), lbvh_detail::PairCount<Mem, Pred, Self>{q, offsets_});
     const long total = exclusive_scan(exec_, Kokkos::subview(offsets_, std::make_pair(0L, m)), offsets_);
     lbvh_detail::reserve(pairs, total, "weft::lbvh_pairs");
     Kokkos::parallel_for(Self ? "weft::lbvh_self_fill" : "weft::lbvh_query_fill", Kokkos::RangePolicy<Exec>(exec_, 0, m),
-                         lbvh_detail::PairFill<Mem, Pred, Self>{q, offsets_, kept_, pairs, m, total});
+                         lbvh_detail::PairFill<Mem, Pred, Self>{q, offsets_, pairs});
     return total;
   }
 
@@ -532,7 +513,6 @@ class Lbvh {
   Kokkos::View<LbvhNode*, Mem> node_;      // per node: float box, rope, first child or primitive
   Kokkos::View<Aabb*, Mem> leaf_box_;       // per leaf: exact box
   Kokkos::View<long*, Mem> offsets_;        // per query, first output slot
-  Kokkos::View<IndexPair*, Mem> kept_;      // per query, the pairs its counting walk kept
 };
 
 }  // namespace weft
