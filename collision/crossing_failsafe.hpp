@@ -14,6 +14,7 @@
 #include "collision/lbvh.hpp"
 #include "collision/mask_jobs.hpp"
 #include "collision/narrow_phase.hpp"
+#include "collision/pair_cull.hpp"
 
 #include <Kokkos_Core.hpp>
 
@@ -35,10 +36,6 @@ struct CrossingSettings {
 KOKKOS_INLINE_FUNCTION CcdSettings ccd_settings(real r, const CrossingSettings& s) {
   return CcdSettings{max_(real(1e-6), s.tolerance_scale * r), s.max_iterations, /*first_hit*/ true};
 }
-
-// The farthest apart two triangles of combined thickness r can be and still be flagged: the crossing CCD
-// reports pairs within its tolerance.
-KOKKOS_INLINE_FUNCTION real crossing_reach(real r, const CrossingSettings& s) { return s.tolerance_scale * r + real(1e-6); }
 
 }  // namespace failsafe_detail
 
@@ -112,7 +109,6 @@ struct CrossingTests {
   // The feature pairs of triangles ta_i and tb_i that may cross.
   KOKKOS_INLINE_FUNCTION uint32_t open_features(int ta_i, const int (&ta)[3], int tb_i, const int (&tb)[3]) const {
     const real fa = narrow_detail::face_th(A, ta_i), fb = narrow_detail::face_th(B, tb_i);
-    if (narrow_detail::swept_apart(A, ta, B, tb, crossing_reach(fa + fb, cs))) return 0;
     uint32_t o = 0;
     const uint8_t ra = A.rmask(ta_i), rb = B.rmask(tb_i);
     for (int k = 0; k < 3; ++k) {
@@ -263,11 +259,15 @@ class CrossingFailsafe {
         const long size = m + m / 2 + 16 < kChunk ? m + m / 2 + 16 : kChunk;
         open_ = Kokkos::View<uint32_t*, Mem>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::failsafe_open"), size);
       }
-      const Kokkos::View<const IndexPair*, Mem> chunk = Kokkos::subview(pairs, std::make_pair(lo, lo + m));
-      Kokkos::parallel_for(self ? "weft::failsafe_self" : "weft::failsafe_collider", Kokkos::RangePolicy<Exec>(exec, 0, m),
+      Kokkos::View<const IndexPair*, Mem> chunk = Kokkos::subview(pairs, std::make_pair(lo, lo + m));
+      // A round that tests every pair tests only those that may come within the crossing test's tolerance
+      // (later rounds test few pairs, and those cheaply).
+      long live = m;
+      if (all) chunk = cull_.keep(exec, A, B, chunk, m, cs.tolerance_scale, real(1e-6), live);
+      Kokkos::parallel_for(self ? "weft::failsafe_self" : "weft::failsafe_collider", Kokkos::RangePolicy<Exec>(exec, 0, live),
                            CrossingTests<Mem>{A, B, chunk, back_, open_, round, self, all, cs});
       MaskJobs<Mem> jobs;
-      const long njobs = count_mask_jobs(exec, open_, m, 0x7FFFu, offsets_, jobs);
+      const long njobs = count_mask_jobs(exec, open_, live, 0x7FFFu, offsets_, jobs);
       if (njobs > 0)
         Kokkos::parallel_for("weft::failsafe_ccd", Kokkos::RangePolicy<Exec>(exec, 0, njobs),
                              CrossingCcd<Mem>{A, B, chunk, jobs, flag_, cs});
@@ -276,6 +276,7 @@ class CrossingFailsafe {
 
  private:
   static constexpr long kChunk = 1L << 24;  // pairs per chunk, as in the narrow phase
+  PairCull<Exec> cull_;
   Kokkos::View<int*, Mem> back_, flag_;
   Kokkos::View<uint32_t*, Mem> open_{"weft::failsafe_open", 0};
   Kokkos::View<long*, Mem> offsets_{"weft::failsafe_offsets", 0};  // per block of pairs

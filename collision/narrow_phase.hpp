@@ -173,53 +173,6 @@ KOKKOS_INLINE_FUNCTION bool apart(const Aabb& a, const Aabb& b, real m) {
   return out;
 }
 
-// The interval of dot(n, p - o) over the start and end positions of triangle t's corners; `sum` gathers
-// the values so that one finiteness test covers them all.
-template <class Mem>
-KOKKOS_INLINE_FUNCTION void swept_interval(const SideMesh<Mem>& S, const int (&t)[3], Vec3 n, Vec3 o, real& lo, real& hi,
-                                           real& sum) {
-  lo = dot(n, S.x(t[0]) - o);
-  hi = lo;
-  sum += lo;
-  for (int k = 1; k < 6; ++k) {
-    const real d = dot(n, (k < 3 ? S.x(t[k]) : S.xs(t[k - 3])) - o);
-    lo = min_(lo, d);
-    hi = max_(hi, d);
-    sum += d;
-  }
-}
-
-// Whether triangles A and B stay farther apart than `reach` over their linear motions from xs to x: a
-// separating axis along the normal (at x) of either. At any time of the motion every point of a triangle
-// lies in the convex hull of its corners' start and end positions, so hulls whose projections on an axis
-// n are more than reach |n| apart keep every feature pair of the two farther apart than reach throughout.
-// Neighbours in one layer are never apart along a normal; the layers above and below, whose tilted boxes
-// overlap and make most of a pass's candidate pairs, mostly are. The pad covers the rounding of the
-// projections (taken from a corner of A, so they stay small) for coordinates up to about 1e3; a
-// non-finite position leaves the pair to the full tests.
-template <class Mem>
-KOKKOS_INLINE_FUNCTION bool swept_apart(const SideMesh<Mem>& SA, const int (&ta)[3], const SideMesh<Mem>& SB,
-                                        const int (&tb)[3], real reach) {
-  const Vec3 o = SA.x(ta[0]);
-  const real limit = reach * (1 + 1e-6) + 1e-9 + 1e-12 * (abs_(o.x) + abs_(o.y) + abs_(o.z));
-  for (int side = 0; side < 2; ++side) {
-    const Vec3 a = side ? SB.x(tb[0]) : o, b = side ? SB.x(tb[1]) : SA.x(ta[1]), c = side ? SB.x(tb[2]) : SA.x(ta[2]);
-    const Vec3 n = cross(b - a, c - a);
-    real alo, ahi, blo, bhi, sum = 0;
-    swept_interval(SA, ta, n, o, alo, ahi, sum);
-    swept_interval(SB, tb, n, o, blo, bhi, sum);
-    if (isfinite_(sum) && max_(blo - ahi, alo - bhi) > limit * norm(n)) return true;
-  }
-  return false;
-}
-
-// The farthest apart two triangles of combined thickness r (the sum of their largest point thicknesses) can
-// be and still give a contact: a proximity test reaches detect_scale r (vertex-face) or ee_detect_scale r,
-// a CCD report with separation r (or 0) its tolerance beyond that.
-KOKKOS_INLINE_FUNCTION real contact_reach(real r, const NarrowSettings& s) {
-  return max_(max_(s.detect_scale, s.ee_detect_scale), 1 + s.ccd_tolerance_scale) * r + s.ccd.tolerance;
-}
-
 }  // namespace narrow_detail
 
 // The cheap tests of the feature pairs of triangles A (side SA) and B (side SB), as bit masks (bits as at
@@ -246,7 +199,6 @@ KOKKOS_INLINE_FUNCTION FeatureTests feature_tests(const SideMesh<Mem>& SA, int A
   const int tb[3] = {SB.tris(B, 0), SB.tris(B, 1), SB.tris(B, 2)};
   const uint8_t ra = SA.rmask(A), rb = SB.rmask(B);
   const real thA = face_th(SA, A), thB = face_th(SB, B);
-  if (swept_apart(SA, ta, SB, tb, contact_reach(thA + thB, s))) return m;
   // Swept boxes of the corners: most feature pairs of a candidate triangle pair are too far apart on some
   // axis to touch, and skipping them spares their distance computations (the result is the same). On the
   // host this makes the narrow phase a third faster; on the GPU the extra registers made it 10-17% slower

@@ -1,5 +1,5 @@
-// The narrow phase over a list of candidate triangle pairs, as kernels: the cheap tests of every pair's
-// feature pairs, the CCD of those left open, one feature pair per thread, then the contacts of each pair
+// The narrow phase over a list of candidate triangle pairs, as kernels: the pairs whose hulls stay apart
+// dropped (collision/pair_cull.hpp), the cheap tests of every other pair's feature pairs, the CCD of those left open, one feature pair per thread, then the contacts of each pair
 // written at its scanned offset. Splitting the CCD out keeps the per-pair kernel small (on the H200 the
 // kernel with the CCD inlined ran at 12% occupancy, limited by its registers) and gives the CCD's long,
 // uneven searches threads of their own. Masks are combined with an integer atomic
@@ -9,6 +9,7 @@
 #include "collision/lbvh.hpp"  // IndexPair
 #include "collision/mask_jobs.hpp"
 #include "collision/narrow_phase.hpp"
+#include "collision/pair_cull.hpp"
 
 #include <Kokkos_Core.hpp>
 
@@ -91,9 +92,16 @@ class NarrowPipeline {
 
  private:
   long run_chunk(const Exec& exec, const SideMesh<Mem>& A, const SideMesh<Mem>& B, const NarrowSettings& ns,
-                 const Kokkos::View<const IndexPair*, Mem>& pairs, long n, Kokkos::View<Contact*, Mem>& contacts,
-                 long first) {
+                 const Kokkos::View<const IndexPair*, Mem>& candidates, long ncandidates,
+                 Kokkos::View<Contact*, Mem>& contacts, long first) {
     using namespace narrow_detail;
+    // A contact needs its features within detect_scale r (vertex-face), ee_detect_scale r, or within r plus
+    // the CCD's tolerance; r is at most the sum of the two triangles' thicknesses.
+    long n = 0;
+    const auto pairs = cull_.keep(exec, A, B, candidates, ncandidates,
+                                  max_(max_(ns.detect_scale, ns.ee_detect_scale), 1 + ns.ccd_tolerance_scale),
+                                  ns.ccd.tolerance, n);
+    if (n == 0) return 0;
     grow(masks_, n);
     grow(open_, n);
     const auto range = Kokkos::RangePolicy<Exec>(exec, 0, n);
@@ -127,6 +135,7 @@ class NarrowPipeline {
   }
 
   long chunk_;
+  PairCull<Exec> cull_;
   Kokkos::View<uint32_t*, Mem> masks_{"weft::narrow_masks", 0}, open_{"weft::narrow_open", 0};
   Kokkos::View<long*, Mem> offsets_{"weft::narrow_offsets", 0};  // per block of pairs
 };

@@ -1,6 +1,7 @@
 // The narrow phase's kernels (collision/narrow_pipeline.hpp) give the contacts of testing each pair's
 // feature pairs one after another, CCD included, whatever the chunk size.
 #include "collision/narrow_pipeline.hpp"
+#include "collision/pair_cull.hpp"
 #include "collision/representative.hpp"
 
 #include <cmath>
@@ -126,7 +127,7 @@ TEST(WEFT_TEST_SUITE, narrow_phase_kernels_match_testing_pair_by_pair) {
   }
 }
 
-// swept_apart, the narrow phase's and the fail-safe's first cut of a candidate pair: whenever it says two
+// swept_apart, the narrow phase's and the fail-safe's cut of candidate pairs (collision/pair_cull.hpp): whenever it says two
 // moving triangles stay farther apart than the reach, no vertex-face or edge-edge pair of them comes that
 // close at any time of the motion (sampled); and it does cut layers apart, never touching neighbours.
 TEST(WEFT_TEST_SUITE, swept_apart_pairs_never_come_within_reach) {
@@ -140,7 +141,7 @@ TEST(WEFT_TEST_SUITE, swept_apart_pairs_never_come_within_reach) {
   const auto apart = [&](real reach) {
     m.x = Kokkos::View<const Vec3*, Host>(x.data(), 6);
     m.xs = Kokkos::View<const Vec3*, Host>(xs.data(), 6);
-    return weft::narrow_detail::swept_apart(m, ta, m, tb, reach);
+    return weft::pair_cull_detail::swept_apart(m, ta, m, tb, reach);
   };
   // The closest any feature pair of the two comes, at 65 times of the motion.
   const auto closest = [&] {
