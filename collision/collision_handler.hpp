@@ -164,7 +164,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
     }
     if (nself + ncollider == 0) return;
     const FailsafeStats fs = failsafe_run_.run(s.exec, cloth_side(s), collider_side(s), pairs_, nself, collider_pairs_,
-                                               ncollider, s.x, s.x_start, s.w);
+                                               ncollider, s.x, s.x_start, s.w,
+                                               narrow_.pair_cull());
     stats_.failsafe_points += fs.points;
     stats_.failsafe_rounds += fs.rounds;
     stats_.failsafe_pinned += fs.pinned;

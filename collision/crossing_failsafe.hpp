@@ -209,11 +209,13 @@ class CrossingFailsafe {
   using Pairs = Kokkos::View<IndexPair*, Mem>;
 
   // `self_pairs` (cloth triangle pairs) and `collider_pairs` (cloth, collider) came from boxes that contain
-  // every position between x_start and x, so they stay valid while points move back.
+  // every position between x_start and x, so they stay valid while points move back. `cull`: working
+  // memory for the pair cut of full rounds (the narrow phase's, NarrowPipeline::pair_cull()).
   FailsafeStats run(const Exec& exec, const SideMesh<Mem>& cloth, const SideMesh<Mem>& collider,
                     const Pairs& self_pairs, long nself, const Pairs& collider_pairs, long ncollider,
                     const Kokkos::View<Vec3*, Mem>& x, const Kokkos::View<Vec3*, Mem>& xs,
-                    const Kokkos::View<real*, Mem>& w) {
+                    const Kokkos::View<real*, Mem>& w, PairCull<Exec>& cull) {
+    cull_ = &cull;
     using namespace failsafe_detail;
     const long n = long(x.extent(0));
     if (long(back_.extent(0)) != n) {
@@ -263,7 +265,7 @@ class CrossingFailsafe {
       // A round that tests every pair tests only those that may come within the crossing test's tolerance
       // (later rounds test few pairs, and those cheaply).
       long live = m;
-      if (all) chunk = cull_.keep(exec, A, B, chunk, m, cs.tolerance_scale, real(1e-6), live);
+      if (all) chunk = cull_->keep(exec, A, B, chunk, m, cs.tolerance_scale, real(1e-6), live);
       Kokkos::parallel_for(self ? "weft::failsafe_self" : "weft::failsafe_collider", Kokkos::RangePolicy<Exec>(exec, 0, live),
                            CrossingTests<Mem>{A, B, chunk, back_, open_, round, self, all, cs});
       MaskJobs<Mem> jobs;
@@ -276,7 +278,7 @@ class CrossingFailsafe {
 
  private:
   static constexpr long kChunk = 1L << 24;  // pairs per chunk, as in the narrow phase
-  PairCull<Exec> cull_;
+  PairCull<Exec>* cull_ = nullptr;  // run()'s, for the call
   Kokkos::View<int*, Mem> back_, flag_;
   Kokkos::View<uint32_t*, Mem> open_{"weft::failsafe_open", 0};
   Kokkos::View<long*, Mem> offsets_{"weft::failsafe_offsets", 0};  // per block of pairs

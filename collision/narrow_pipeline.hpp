@@ -78,6 +78,9 @@ class NarrowPipeline {
   // search, so fewer chunks are faster; 16M pairs keep the working memory near 270 MB.
   explicit NarrowPipeline(long chunk = 1L << 24) : chunk_(chunk) {}
 
+  // The pair cut's working memory, which the crossing fail-safe borrows (it runs between passes).
+  PairCull<Exec>& pair_cull() { return cull_; }
+
   // Contacts of pairs [0, npairs) between sides A and B, written to contacts[first...] (grown as needed,
   // keeping contacts[0, first)); returns how many. Reads two counters per chunk back to the host.
   long run(const Exec& exec, const SideMesh<Mem>& A, const SideMesh<Mem>& B, const NarrowSettings& ns,
