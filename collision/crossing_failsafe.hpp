@@ -215,7 +215,6 @@ class CrossingFailsafe {
                     const Pairs& self_pairs, long nself, const Pairs& collider_pairs, long ncollider,
                     const Kokkos::View<Vec3*, Mem>& x, const Kokkos::View<Vec3*, Mem>& xs,
                     const Kokkos::View<real*, Mem>& w, PairCull<Exec>& cull) {
-    cull_ = &cull;
     using namespace failsafe_detail;
     const long n = long(x.extent(0));
     if (long(back_.extent(0)) != n) {
@@ -229,8 +228,8 @@ class CrossingFailsafe {
     bool pinned = false;
     for (int round = 0;; ++round) {
       const bool all = round == 0 || pinned;
-      mark_crossings(exec, cloth, cloth, self_pairs, nself, round, true, all);
-      mark_crossings(exec, cloth, collider, collider_pairs, ncollider, round, false, all);
+      mark_crossings(exec, cloth, cloth, self_pairs, nself, round, true, all, cull);
+      mark_crossings(exec, cloth, collider, collider_pairs, ncollider, round, false, all, cull);
       long counts = 0;
       Kokkos::parallel_reduce("weft::failsafe_move_back", Kokkos::RangePolicy<Exec>(exec, 0, n),
                               MoveBack<Mem>{x, xs, w, back_, flag_, round, pinned}, counts);
@@ -249,9 +248,10 @@ class CrossingFailsafe {
 
   // Flags the cloth points of every crossing feature pair of pairs [0, n) between sides A and B: cheap
   // tests per triangle pair, then the CCD of the feature pairs they leave open, one per thread (as in the
-  // narrow phase), in chunks of bounded working memory. Reads one counter per chunk back.
+  // narrow phase), in chunks of bounded working memory; with `all`, after the pair cut. Reads one counter
+  // per chunk back.
   void mark_crossings(const Exec& exec, const SideMesh<Mem>& A, const SideMesh<Mem>& B, const Pairs& pairs, long n,
-                      int round, bool self, bool all) {
+                      int round, bool self, bool all, PairCull<Exec>& cull) {
     using namespace failsafe_detail;
     CrossingSettings cs = cs_;
     if (round > 0) cs.max_iterations = cs.later_max_iterations;
@@ -265,7 +265,7 @@ class CrossingFailsafe {
       // A round that tests every pair tests only those that may come within the crossing test's tolerance
       // (later rounds test few pairs, and those cheaply).
       long live = m;
-      if (all) chunk = cull_->keep(exec, A, B, chunk, m, cs.tolerance_scale, real(1e-6), live);
+      if (all) chunk = cull.keep(exec, A, B, chunk, m, cs.tolerance_scale, real(1e-6), live);
       Kokkos::parallel_for(self ? "weft::failsafe_self" : "weft::failsafe_collider", Kokkos::RangePolicy<Exec>(exec, 0, live),
                            CrossingTests<Mem>{A, B, chunk, back_, open_, round, self, all, cs});
       MaskJobs<Mem> jobs;
@@ -278,7 +278,6 @@ class CrossingFailsafe {
 
  private:
   static constexpr long kChunk = 1L << 24;  // pairs per chunk, as in the narrow phase
-  PairCull<Exec>* cull_ = nullptr;  // run()'s, for the call
   Kokkos::View<int*, Mem> back_, flag_;
   Kokkos::View<uint32_t*, Mem> open_{"weft::failsafe_open", 0};
   Kokkos::View<long*, Mem> offsets_{"weft::failsafe_offsets", 0};  // per block of pairs

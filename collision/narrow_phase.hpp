@@ -198,7 +198,6 @@ KOKKOS_INLINE_FUNCTION FeatureTests feature_tests(const SideMesh<Mem>& SA, int A
   const int ta[3] = {SA.tris(A, 0), SA.tris(A, 1), SA.tris(A, 2)};
   const int tb[3] = {SB.tris(B, 0), SB.tris(B, 1), SB.tris(B, 2)};
   const uint8_t ra = SA.rmask(A), rb = SB.rmask(B);
-  const real thA = face_th(SA, A), thB = face_th(SB, B);
   // Swept boxes of the corners: most feature pairs of a candidate triangle pair are too far apart on some
   // axis to touch, and skipping them spares their distance computations (the result is the same). On the
   // host this makes the narrow phase a third faster; on the GPU the extra registers made it 10-17% slower
@@ -207,6 +206,7 @@ KOKKOS_INLINE_FUNCTION FeatureTests feature_tests(const SideMesh<Mem>& SA, int A
   const Aabb va[3] = {swept_point_box(SA, ta[0]), swept_point_box(SA, ta[1]), swept_point_box(SA, ta[2])};
   const Aabb vb[3] = {swept_point_box(SB, tb[0]), swept_point_box(SB, tb[1]), swept_point_box(SB, tb[2])};
   const Aabb boxA = merge(merge(va[0], va[1]), va[2]), boxB = merge(merge(vb[0], vb[1]), vb[2]);
+  const real thA = face_th(SA, A), thB = face_th(SB, B);
   for (int k = 0; k < 3; ++k) {
     if ((ra >> k) & 1) {
       const int p = ta[k];

@@ -7,7 +7,7 @@
 // no crossing, so the results are the same bits; the one exception would be a CCD search of a dropped pair
 // running to its cap, which counts as a hit: no pinned or cross-backend hash changed.
 #pragma once
-#include "collision/lbvh.hpp"  // IndexPair
+#include "collision/lbvh.hpp"  // IndexPair, reserve
 #include "collision/mask_jobs.hpp"
 #include "collision/narrow_phase.hpp"
 
@@ -96,20 +96,16 @@ class PairCull {
                                            const Kokkos::View<const IndexPair*, Mem>& pairs, long n, real scale, real pad,
                                            long& kept) {
     using namespace pair_cull_detail;
-    grow(live_, n, "weft::cull_live");
+    lbvh_detail::reserve(live_, n, "weft::cull_live");
     Kokkos::parallel_for("weft::cull_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n), MarkLive<Mem>{A, B, pairs, live_, scale, pad});
     MaskJobs<Mem> slots;
     kept = count_mask_jobs(exec, live_, n, 1u, offsets_, slots);
-    grow(out_, kept, "weft::cull_pairs");
+    lbvh_detail::reserve(out_, kept, "weft::cull_pairs");
     Kokkos::parallel_for("weft::cull_gather", Kokkos::RangePolicy<Exec>(exec, 0, n), GatherLive<Mem>{slots, pairs, out_});
     return Kokkos::subview(out_, std::make_pair(0L, kept));
   }
 
  private:
-  template <class V>
-  static void grow(V& v, long n, const char* label) {
-    if (long(v.extent(0)) < n) v = V(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(label)), n + n / 8 + 16);
-  }
   Kokkos::View<uint32_t*, Mem> live_;
   Kokkos::View<long*, Mem> offsets_{"weft::cull_offsets", 0};
   Kokkos::View<IndexPair*, Mem> out_;
