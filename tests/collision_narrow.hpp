@@ -1,5 +1,6 @@
 // The narrow phase's kernels (collision/narrow_pipeline.hpp) give the contacts of testing each pair's
 // feature pairs one after another, CCD included, whatever the chunk size.
+#include "collision/crossing_failsafe.hpp"
 #include "collision/narrow_pipeline.hpp"
 #include "collision/pair_cull.hpp"
 #include "collision/representative.hpp"
@@ -194,6 +195,30 @@ TEST(WEFT_TEST_SUITE, swept_apart_pairs_never_come_within_reach) {
   for (int k = 0; k < 3; ++k) xs[3 + k] = x[3 + k] = Vec3{real(0.01) * (k != 0), real(0.01) * (k == 1), 0} * real(-1);
   xs[3] = x[3] = xs[0];
   EXPECT_FALSE(apart(1e-9));
+}
+
+// The fail-safe's later rounds grow the flagged points by the other corners of their triangles, never by
+// pinned points: a strip of four triangles, 0-1-2 over 3-4-5, with point 3 pinned.
+TEST(WEFT_TEST_SUITE, failsafe_flags_grow_by_one_ring_but_not_to_pinned_points) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  using Mem = typename Exec::memory_space;
+  const int tri[4][3] = {{0, 1, 3}, {1, 4, 3}, {1, 2, 4}, {2, 5, 4}};
+  Kokkos::View<int* [3], Mem> tris("tris", 4);
+  auto th = Kokkos::create_mirror_view(tris);
+  for (int t = 0; t < 4; ++t)
+    for (int k = 0; k < 3; ++k) th(t, k) = tri[t][k];
+  Kokkos::deep_copy(tris, th);
+  const auto w = weft::test::to_device<Exec>(std::vector<real>{1, 1, 1, 0, 1, 1}, "w");
+  const auto grow = [&](std::vector<int> flagged) {
+    const auto flag = weft::test::to_device<Exec>(flagged, "flag");
+    const auto grown = weft::test::to_device<Exec>(flagged, "grown");
+    Kokkos::parallel_for(Kokkos::RangePolicy<Exec>(0, 4), weft::failsafe_detail::GrowFlags<Mem>{tris, flag, w, grown});
+    return weft::test::to_host(grown);
+  };
+  EXPECT_EQ(grow({1, 0, 0, 0, 0, 0}), (std::vector<int>{1, 1, 0, 0, 0, 0}));  // 3 is pinned
+  EXPECT_EQ(grow({0, 0, 0, 0, 0, 1}), (std::vector<int>{0, 0, 1, 0, 1, 1}));
+  EXPECT_EQ(grow({0, 0, 0, 1, 0, 0}), (std::vector<int>{1, 1, 0, 1, 1, 0}));  // a flagged pinned point still grows
+  EXPECT_EQ(grow({0, 0, 0, 0, 0, 0}), (std::vector<int>(6, 0)));
 }
 
 }  // namespace
