@@ -9,7 +9,8 @@
 // crossing pairs is already back (or pinned). The start of the substep being free of crossings, so is the
 // end: this is the "fail-safe" of Bridson et al. 2002 in its simplest form (the impact zone stops instead of
 // moving rigidly). After a few rounds the flags also take the neighbours of flagged points (GrowFlags), so
-// a large zone is reached in fewer rounds. Rounds, flags and counts are integers, so the result is the same on every backend.
+// a large zone is reached in fewer rounds. Rounds, flags and counts are integers, so the result is the same
+// on every backend.
 #pragma once
 #include "collision/ccd.hpp"
 #include "collision/lbvh.hpp"
@@ -174,9 +175,10 @@ struct CrossingCcd {
 
 // From round `grow_from` on, the points flagged in a round are joined by the other corners of their
 // triangles (`grown` starts as a copy of `flag`; pinned points are never added). A tangle the contacts left
-// spreads to the next ring of points each round; growing the flags takes two rings a round, and the worst
-// frame of the 300K skirt at one substep a frame from 189 rounds to 89, with about as many points moved
-// back (59K). Integer flags set idempotently: the same on every backend.
+// spreads to the next ring of points each round; growing the flags takes two rings a round, and took the
+// worst frame of the 300K skirt at one substep a frame from hundreds of rounds to 89, with about as many
+// points moved back (docs/performance.md, session 16). The copy keeps the result independent of the order
+// in which triangles run. Integer flags set idempotently: the same on every backend.
 template <class Mem>
 struct GrowFlags {
   Kokkos::View<const int* [3], Mem> tris;
@@ -303,8 +305,8 @@ class CrossingFailsafe {
       MaskJobs<Mem> jobs;
       const long njobs = count_mask_jobs(exec, open_, live, 0x7FFFu, offsets_, jobs);
       if (njobs > 0)
-        Kokkos::parallel_for(all ? "weft::failsafe_ccd_full" : "weft::failsafe_ccd", Kokkos::RangePolicy<Exec>(exec, 0, njobs),
-                             CrossingCcd<Mem>{A, B, chunk, jobs, flag_, cs});
+        Kokkos::parallel_for(all ? "weft::failsafe_ccd_full" : "weft::failsafe_ccd",
+                             Kokkos::RangePolicy<Exec>(exec, 0, njobs), CrossingCcd<Mem>{A, B, chunk, jobs, flag_, cs});
     }
   }
 

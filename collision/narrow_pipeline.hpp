@@ -1,10 +1,11 @@
 // The narrow phase over a list of candidate triangle pairs, as kernels: the pairs whose hulls stay apart
 // dropped (collision/pair_cull.hpp), the cheap tests of every other pair's feature pairs, the CCD of those
-// left open, one feature pair per thread, then the contacts of each pair written at its scanned offset. Splitting the CCD out keeps the per-pair kernel small (on the H200 the
-// kernel with the CCD inlined ran at 12% occupancy, limited by its registers) and gives the CCD's long,
-// uneven searches threads of their own. Masks are combined with an integer atomic
-// OR, which is order-free; the CCD jobs and the contacts are numbered by scanning their bits per block of
-// pairs (collision/mask_jobs.hpp): the contacts come out in pair order, and the same bits, on every backend.
+// left open, one feature pair per thread, then the contacts of each pair written at its scanned offset.
+// Splitting the CCD out keeps the per-pair kernel small (on the H200 the kernel with the CCD inlined ran at
+// 12% occupancy, limited by its registers) and gives the CCD's long, uneven searches threads of their own.
+// Masks are combined with an integer atomic OR, which is order-free; the CCD jobs and the contacts are
+// numbered by scanning their bits per block of pairs (collision/mask_jobs.hpp): the contacts come out in
+// pair order, and the same bits, on every backend.
 #pragma once
 #include "collision/lbvh.hpp"  // IndexPair
 #include "collision/mask_jobs.hpp"
