@@ -33,6 +33,9 @@ void apply_contact_solver(const std::string& value, bool& jacobi_contacts);
 // --ccd-span substep|pass (run, bench): overrides the scene's ccd_per_pass when not empty.
 void add_ccd_span_option(CLI::App* cmd, std::string& value);
 void apply_ccd_span(const std::string& value, bool& ccd_per_pass);
+// --tethers STRETCH (run, bench): overrides the scene's tether_stretch when not empty (0 switches them off).
+void add_tethers_option(CLI::App* cmd, std::string& value);
+void apply_tethers(const std::string& value, real& tether_stretch);
 
 // Prints `weft: warning: SCENE: ...` on stderr for each cloth piece too thick for its triangles
 // (thickness_warnings, core/scene.hpp); the run goes on.

@@ -11,7 +11,7 @@ namespace weft::cli {
 namespace {
 
 struct Options {
-  std::string scene, schedules = "current", json, self_collision, contact_solver, ccd_span;
+  std::string scene, schedules = "current", json, self_collision, contact_solver, ccd_span, tethers;
   int res = 0, frames = 10, warmup = 2;
 };
 
@@ -24,6 +24,7 @@ struct Result {
   // The collision stage's parts: tree builds per frame; broad phase, narrow phase, colouring per pass.
   double ms_build = 0, ms_broad = 0, ms_narrow = 0, ms_colouring = 0;
   double contacts = 0, failsafe_rounds = 0;  // means per frame
+  double max_strain = 0;                     // the largest of the timed frames' (accuracy, not speed)
   long memory = -1;
   bool collision_stage = false;  // the scene has one (colliders or self collision)
 };
@@ -53,6 +54,7 @@ Result bench_one(Backend b, Scene scene, const Options& o, const Schedule& sc) {
     passes += fs.collision_passes;
     r.contacts += double(fs.contacts) / o.frames;
     r.failsafe_rounds += double(fs.failsafe_rounds) / o.frames;
+    r.max_strain = fs.max_strain > r.max_strain ? fs.max_strain : r.max_strain;
   }
   r.collision_stage = passes > 0;
   for (double* per_pass : {&r.ms_pass, &r.ms_broad, &r.ms_narrow, &r.ms_colouring})
@@ -69,6 +71,7 @@ int bench(const GlobalOptions& g, const Options& o) {
   apply_self_collision(o.self_collision, scene.settings.self_collision);
   apply_contact_solver(o.contact_solver, scene.settings.jacobi_contacts);
   apply_ccd_span(o.ccd_span, scene.settings.ccd_per_pass);
+  apply_tethers(o.tethers, scene.settings.tether_stretch);
   warn_about_thickness(scene);
   std::vector<Schedule> schedules;
   if (o.schedules == "paper") schedules = {{"paper-1", 200, 20, 1}, {"paper-2", 20, 2, 10}, {"paper-3", 10, 1, 20}};
@@ -76,18 +79,20 @@ int bench(const GlobalOptions& g, const Options& o) {
   else throw Error("--schedules is 'paper' or 'current'", 2);
   const char* contacts = scene.settings.jacobi_contacts ? "jacobi" : "gauss-seidel";
   const char* span = scene.settings.ccd_per_pass ? "pass" : "substep";
-  std::printf("%s: %zu points, %zu triangles, backend %s, %s contacts, CCD span %s, %d frames after %d warm-up "
-              "(stage times fenced)\n", scene.name.c_str(), scene.points.size(), scene.triangles.size(), backend_name(b),
-              contacts, span, o.frames, o.warmup);
-  std::printf("%-9s %5s %5s %5s %10s %12s %13s %10s %10s %10s %8s %10s %9s\n", "schedule", "iter", "pass", "sub",
+  const real tethers = scene.settings.tether_stretch;
+  std::printf("%s: %zu points, %zu triangles, backend %s, %s contacts, CCD span %s, tethers %g, %d frames after %d "
+              "warm-up (stage times fenced)\n", scene.name.c_str(), scene.points.size(), scene.triangles.size(),
+              backend_name(b), contacts, span, tethers, o.frames, o.warmup);
+  std::printf("%-9s %5s %5s %5s %10s %12s %13s %10s %10s %10s %8s %10s %9s %10s\n", "schedule", "iter", "pass", "sub",
               "ms/frame", "constraints", "ms/col.pass", "contacts", "smoothing", "fail-safe", "rounds", "#contacts",
-              "mem MiB");
+              "mem MiB", "max strain");
   std::vector<Result> results;
   for (const Schedule& sc : schedules) {
     const Result r = bench_one(b, scene, o, sc);
-    std::printf("%-9s %5d %5d %5d %10.2f %12.2f %13.3f %10.2f %10.2f %10.2f %8.1f %10.0f %9.1f\n", r.schedule.c_str(),
-                r.iterations, r.passes, r.substeps, r.ms_frame, r.ms_constraints, r.ms_pass, r.ms_contacts,
-                r.ms_smoothing, r.ms_failsafe, r.failsafe_rounds, r.contacts, r.memory >= 0 ? r.memory / 1048576.0 : -1.0);
+    std::printf("%-9s %5d %5d %5d %10.2f %12.2f %13.3f %10.2f %10.2f %10.2f %8.1f %10.0f %9.1f %10.3f\n",
+                r.schedule.c_str(), r.iterations, r.passes, r.substeps, r.ms_frame, r.ms_constraints, r.ms_pass,
+                r.ms_contacts, r.ms_smoothing, r.ms_failsafe, r.failsafe_rounds, r.contacts,
+                r.memory >= 0 ? r.memory / 1048576.0 : -1.0, r.max_strain);
     if (r.collision_stage)
       std::printf("%-9s collision stage: tree builds %.2f ms/frame; per pass: broad phase %.3f ms, narrow phase (CCD) "
                   "%.3f ms, contact colouring %.3f ms\n", "", r.ms_build, r.ms_broad, r.ms_narrow, r.ms_colouring);
@@ -96,7 +101,7 @@ int bench(const GlobalOptions& g, const Options& o) {
   if (!o.json.empty()) io::write_file_atomically(o.json, [&](std::ostream& out) {
     out << "{\"scene\": \"" << scene.name << "\", \"triangles\": " << scene.triangles.size() << ", \"backend\": \""
         << backend_name(b) << "\", \"contact_solver\": \"" << contacts << "\", \"ccd_span\": \"" << span
-        << "\", \"results\": [";
+        << "\", \"tether_stretch\": " << tethers << ", \"results\": [";
     for (size_t i = 0; i < results.size(); ++i) {
       const Result& r = results[i];
       out << (i ? ", " : "") << "{\"schedule\": \"" << r.schedule << "\", \"iterations\": " << r.iterations
@@ -106,7 +111,7 @@ int bench(const GlobalOptions& g, const Options& o) {
           << ", \"ms_failsafe\": " << r.ms_failsafe << ", \"failsafe_rounds\": " << r.failsafe_rounds
           << ", \"ms_lbvh_build\": " << r.ms_build << ", \"ms_broad_phase_per_pass\": " << r.ms_broad
           << ", \"ms_narrow_phase_per_pass\": " << r.ms_narrow << ", \"ms_colouring_per_pass\": " << r.ms_colouring
-          << ", \"contacts\": " << r.contacts
+          << ", \"contacts\": " << r.contacts << ", \"max_strain\": " << r.max_strain
           << ", \"memory_bytes\": " << r.memory << "}";
     }
     out << "]}\n";
@@ -126,6 +131,7 @@ void add_bench(CLI::App& app, const GlobalOptions& g, Action& action) {
   add_self_collision_option(cmd, o->self_collision);
   add_contact_solver_option(cmd, o->contact_solver);
   add_ccd_span_option(cmd, o->ccd_span);
+  add_tethers_option(cmd, o->tethers);
   cmd->callback([&g, &action, o] { action = [&g, o] { return bench(g, *o); }; });
 }
 

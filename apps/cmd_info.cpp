@@ -33,7 +33,8 @@ void print_settings(const SolverSettings& s) {
             << s.impact_zone_epsilon << ", " << s.impact_zone_sweeps << " sweeps), crossing fail-safe "
             << (s.collision_failsafe ? "on" : "off") << ", contact solver "
             << (s.jacobi_contacts ? "jacobi" : "gauss-seidel") << ", CCD span "
-            << (s.ccd_per_pass ? "pass" : "substep") << "\n";
+            << (s.ccd_per_pass ? "pass" : "substep") << ", tethers "
+            << (s.tether_stretch > 0 ? std::to_string(s.tether_stretch) : std::string("off")) << "\n";
 }
 
 void print_scene(const std::string& path) {

@@ -62,6 +62,7 @@ std::string resume_command(const RunOptions& o) {
   opt("--self-collision", o.self_collision);
   opt("--contact-solver", o.contact_solver);
   opt("--ccd-span", o.ccd_span);
+  opt("--tethers", o.tethers);
   return c + " -o " + o.output + " --resume";
 }
 
@@ -161,6 +162,7 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   apply_self_collision(o.self_collision, st.self_collision);
   apply_contact_solver(o.contact_solver, st.jacobi_contacts);
   apply_ccd_span(o.ccd_span, st.ccd_per_pass);
+  apply_tethers(o.tethers, st.tether_stretch);
   warn_about_thickness(scene);
   if (o.clean) {  // the solvability check (docs/solvability.md) replaces the colliders by cleaned ones
     const BodyCleaning c = clean_body(b, scene);
@@ -170,8 +172,9 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   }
   auto sim = make_simulation(b, scene);
   if (!o.quiet)
-    std::printf("%s: %zu points, %zu triangles, %ld constraint rows in %d colours, backend %s\n", scene.name.c_str(),
-                scene.points.size(), scene.triangles.size(), sim->row_count(), sim->colour_count(), backend_name(b));
+    std::printf("%s: %zu points, %zu triangles, %ld constraint rows in %d colours, %ld tethers, backend %s\n",
+                scene.name.c_str(), scene.points.size(), scene.triangles.size(), sim->row_count(), sim->colour_count(),
+                sim->tether_count(), backend_name(b));
 
   const io::CacheHeader header{scene.name, backend_name(b), scene.points.size(), scene.triangles, st};
   const std::string stem = io::frame_file_stem(scene.name);
@@ -263,6 +266,7 @@ void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   add_self_collision_option(cmd, o->self_collision);
   add_contact_solver_option(cmd, o->contact_solver);
   add_ccd_span_option(cmd, o->ccd_span);
+  add_tethers_option(cmd, o->tethers);
   cmd->add_flag("--hash", o->hash, "print 'hash <16 hex digits>' of every frame's positions as the last line");
   cmd->add_flag("--quiet", o->quiet, "no per-frame lines");
   cmd->add_option("-o,--output", o->output, "HDF5 cache written frame by frame (readable while the run goes on)");

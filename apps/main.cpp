@@ -1,6 +1,7 @@
 #include "apps/cli.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 
@@ -54,6 +55,23 @@ void add_ccd_span_option(CLI::App* cmd, std::string& value) {
 
 void apply_ccd_span(const std::string& value, bool& ccd_per_pass) {
   if (!value.empty()) ccd_per_pass = value == "pass";
+}
+
+void add_tethers_option(CLI::App* cmd, std::string& value) {
+  cmd->add_option("--tethers", value,
+                  "STRETCH: hold every point within STRETCH (>= 1) times its path along the cloth from the nearest "
+                  "hard-pinned point; 0 = no tethers (default: the scene's; docs/solver.md)")
+      ->check([](const std::string& v) -> std::string {
+        char* end = nullptr;
+        const double x = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end != 0 || !(x == 0 || (x >= 1 && x < 1e6)))
+          return "--tethers wants 0 (off) or a stretch of at least 1, got '" + v + "'";
+        return "";
+      });
+}
+
+void apply_tethers(const std::string& value, real& tether_stretch) {
+  if (!value.empty()) tether_stretch = std::strtod(value.c_str(), nullptr);
 }
 
 void warn_about_thickness(const Scene& s) {

@@ -16,6 +16,7 @@ struct RunOptions {
   std::string self_collision;  // "on" | "off" | "" (the scene's setting)
   std::string contact_solver;  // "gauss-seidel" | "jacobi" | "" (the scene's setting)
   std::string ccd_span;        // "substep" | "pass" | "" (the scene's setting)
+  std::string tethers;         // tether stretch, "" (the scene's setting)
   bool hash = false, quiet = false;
   std::string output, geo_dir;
   bool resume = false;

@@ -25,6 +25,7 @@ class Simulation {
   virtual void set_state(int frame, const std::vector<Vec3>& x, const std::vector<Vec3>& v) = 0;
   virtual int colour_count() const = 0;
   virtual long row_count() const = 0;
+  virtual long tether_count() const = 0;
   // Pairs of cloth triangles that intersect at the current positions (discrete check, adjacent pairs excluded).
   virtual long intersections() const = 0;
 };

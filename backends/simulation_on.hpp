@@ -47,6 +47,7 @@ class SimulationOn final : public Simulation {
   }
   int colour_count() const override { return solver_.colour_count(); }
   long row_count() const override { return solver_.row_count(); }
+  long tether_count() const override { return solver_.tether_count(); }
   long intersections() const override {
     Lbvh<Exec> bvh;
     return count_intersections(bvh, Kokkos::View<const Vec3*, typename Exec::memory_space>(solver_.state().x),

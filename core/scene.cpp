@@ -110,6 +110,9 @@ void validate_scene(const Scene& s) {
   if (!(st.fps > 0) || st.substeps < 1 || st.iterations < 0 || st.collision_passes < 0 || st.smoothing_iterations < 0 ||
       st.frame_end < st.frame_start)
     fail(s, "invalid solver settings (fps > 0, substeps >= 1, iterations/passes >= 0, frame_end >= frame_start)");
+  if (!(st.tether_stretch == 0 || (st.tether_stretch >= 1 && st.tether_stretch < 1e6)))
+    fail(s, "tether stretch " + std::to_string(st.tether_stretch) + " is neither 0 (no tethers) nor at least 1 "
+            "(a tether shorter than the cloth's rest path would fight its edges)");
 }
 
 std::vector<std::string> thickness_warnings(const Scene& s) {

@@ -18,6 +18,8 @@ struct SolverSettings {
   int iterations = 20;                   // Gauss-Seidel constraint iterations per substep
   int collision_passes = 2;              // per substep, spread evenly over the iterations
   int smoothing_iterations = 0;          // Jacobi passes after Gauss-Seidel (Vellum "smoothing iterations")
+  real tether_stretch = 0;               // 0: no tethers; else a point stays within this times its path length
+                                         // at rest from the nearest hard-pinned point (constraints/tether.hpp)
   Vec3 gravity{0, -9.81, 0};             // m/s^2
   Vec3 wind{0, 0, 0};                    // constant acceleration, m/s^2
   real velocity_damping = 0;             // 1/s: v <- max(0, 1 - damping h) v + h a each substep

@@ -3,6 +3,7 @@
 // velocity update). Everything stays on the device; a frame copies back only a few statistics.
 #pragma once
 #include "constraints/build_rows.hpp"
+#include "constraints/build_tethers.hpp"
 #include "core/colouring.hpp"
 #include "core/error.hpp"
 #include "core/frame_stats.hpp"
@@ -42,6 +43,7 @@ class Solver {
   int frame() const { return frame_; }
   int colour_count() const { return int(colour_offset_.size()) - 1; }
   long row_count() const { return long(rows_.extent(0)); }
+  long tether_count() const { return long(tethers_.extent(0)); }
   void set_collision_stage(std::unique_ptr<CollisionStage<Exec>> c) { collision_ = std::move(c); }
 
   // Advances from frame() to frame() + 1.
@@ -158,13 +160,13 @@ class Solver {
     if (collision_) timed(prof_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });
   }
 
-  // One Gauss-Seidel sweep, recorded once as a graph, so that on the device a sweep is one graph launch.
-  // On the device each colour is a kernel per row kind, the kinds side by side. The host backends run one
+  // One Gauss-Seidel sweep, then the tethers, recorded once as a graph, so that on the device a sweep is one
+  // graph launch. On the device each colour is a kernel per row kind, the kinds side by side. The host backends run one
   // kernel per colour, of any kind: a CPU gains nothing from the smaller kernels, more launches cost more
   // thread barriers, and Kokkos 3.4's host graphs walk every path back to the root at each submit, which
   // grows as 2^joins.
   void gauss_seidel_sweep(real h) {
-    if (colour_kinds_.empty()) return;
+    if (colour_kinds_.empty() && tethers_.extent(0) == 0) return;
     if (!sweep_ || sweep_h_ != h) {
       constexpr bool by_kind = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
       // (void): emplace returns the graph, whose type Kokkos marks [[nodiscard]].
@@ -182,6 +184,9 @@ class Solver {
           }
           if (done) node = *done;
         }
+        if (tethers_.extent(0) > 0)
+          (void)node.then_parallel_for("weft::project_tethers", Kokkos::RangePolicy<Exec>(exec_, 0, tethers_.extent(0)),
+                                       kernels::ProjectTethers<Mem>{tethers_, state_.x});
       }));
       sweep_h_ = h;
     }
@@ -342,6 +347,7 @@ class Solver {
         if (runs.empty() || runs.back().kind != sorted[r].kind) runs.push_back({r, r, sorted[r].kind});
         runs.back().end = r + 1;
       }
+    tethers_ = upload(build_tethers(sc, w_host_), "weft::tethers");
     lambda_ = View<real*>("weft::lambda", sorted.size());
     row_scratch_ = View<real*>("weft::row_scratch", sorted.size());
     // Jacobi gather lists: for each point, the (row, slot) entries that move it, in row order.
@@ -368,6 +374,7 @@ class Solver {
   View<real*> mass_, scratch_, row_scratch_, lambda_;
   std::vector<real> w_host_;
   View<Row*> rows_;
+  View<Tether*> tethers_;
   std::vector<long> colour_offset_;
   std::vector<std::vector<KindRange>> colour_kinds_;  // per colour, its rows by kind
   View<Vec3**> target_frames_, collider_frames_;

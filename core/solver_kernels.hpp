@@ -2,6 +2,7 @@
 // instance is compiled in several translation units; docs/solver.md, "Kernels are functors").
 #pragma once
 #include "constraints/rows.hpp"
+#include "constraints/tether.hpp"
 #include "core/real.hpp"
 #include "core/vec.hpp"
 
@@ -93,6 +94,17 @@ struct ProjectRows {
   KOKKOS_INLINE_FUNCTION void operator()(long r) const {
     if constexpr (K == kRowKinds) project_row(rows(r), x, xs, w, lambda(r), ctx, h);
     else project_row_of<K>(rows(r), x, xs, w, lambda(r), ctx, h);
+  }
+};
+
+// Every tether at once: each moves only its own point, towards a point that does not move.
+template <class Mem>
+struct ProjectTethers {
+  Kokkos::View<Tether*, Mem> tethers;
+  Kokkos::View<Vec3*, Mem> x;
+  KOKKOS_INLINE_FUNCTION void operator()(long k) const {
+    const Tether t = tethers(k);
+    x(t.point) = tether_project(x(t.point), x(t.anchor), t.length);
   }
 };
 

@@ -151,7 +151,7 @@ std::string resolve(const std::string& json_path, const std::string& file) {
 
 void read_settings(const Node& n, Scene& s) {
   n.object({"fps", "frames", "substeps", "iterations", "collision_passes", "smoothing", "gravity", "wind", "damping",
-            "impact_zone_smoothing", "collision_failsafe", "contact_solver", "ccd_span", "collisions"});
+            "impact_zone_smoothing", "collision_failsafe", "contact_solver", "ccd_span", "tethers", "collisions"});
   SolverSettings& st = s.settings;
   st.fps = n.number("fps", st.fps, Range::Positive);
   if (n.has("frames")) {
@@ -178,6 +178,11 @@ void read_settings(const Node& n, Scene& s) {
     const std::string v = n["ccd_span"].string();
     if (v != "substep" && v != "pass") n["ccd_span"].fail("expected \"substep\" or \"pass\"");
     st.ccd_per_pass = v == "pass";
+  }
+  if (n.has("tethers")) {
+    st.tether_stretch = n.number("tethers", st.tether_stretch, Range::NonNegative);
+    if (st.tether_stretch != 0 && st.tether_stretch < 1)
+      n["tethers"].fail("expected 0 (no tethers) or a stretch of at least 1");
   }
   if (n.has("collisions")) s.needs_collisions = n["collisions"].boolean();
 }

@@ -11,7 +11,7 @@ namespace {
 // A field added to these structs must be added to the file (and the format version raised): the sizes are
 // checked so that the scene file does not silently drop it (a field that fits in padding escapes the check).
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is stored as 3 doubles");
-static_assert(sizeof(SolverSettings) == 152, "SolverSettings changed: update the settings tables below");
+static_assert(sizeof(SolverSettings) == 160, "SolverSettings changed: update the settings tables below");
 static_assert(sizeof(XpbdMaterial) == 24 && sizeof(DistanceConstraint) == 40 && sizeof(BendConstraint) == 48 &&
                   sizeof(TriarapConstraint) == 88 && sizeof(PinConstraint) == 72 && sizeof(AttachConstraint) == 64 &&
                   sizeof(PtPrimConstraint) == 96 && sizeof(FemConstraint) == 88,
@@ -28,6 +28,7 @@ const std::pair<const char*, real SolverSettings::*> kRealSettings[] = {
     {"layer_shock", &SolverSettings::layer_shock},
     {"parallel_edge_degrees", &SolverSettings::parallel_edge_degrees},
     {"impact_zone_epsilon", &SolverSettings::impact_zone_epsilon},
+    {"tether_stretch", &SolverSettings::tether_stretch},
 };
 const std::pair<const char*, int SolverSettings::*> kIntSettings[] = {
     {"frame_start", &SolverSettings::frame_start},
@@ -336,7 +337,11 @@ void write_settings(const h5::File& f, const std::string& group, const SolverSet
 
 SolverSettings read_settings(const h5::File& f, const std::string& group) {
   SolverSettings s;
-  for (const auto& [name, m] : kRealSettings) s.*m = h5::read_attribute<double>(f, group, name);
+  for (const auto& [name, m] : kRealSettings) {
+    // Absent in files written before tethers existed: none.
+    if (std::strcmp(name, "tether_stretch") == 0 && !h5::has_attribute(f, group, name)) continue;
+    s.*m = h5::read_attribute<double>(f, group, name);
+  }
   for (const auto& [name, m] : kIntSettings) s.*m = h5::read_attribute<int>(f, group, name);
   for (const auto& [name, m] : kBoolSettings) {
     // Added after the first files of this format version were written: absent means the default.

@@ -65,7 +65,8 @@ void write_body(const TempDir& dir) {
 const char* kScene = R"({
   "settings": {"fps": 30, "frames": [1, 3], "substeps": 4, "iterations": 15, "collision_passes": 3,
                "smoothing": 2, "gravity": [0, -10, 0], "wind": [1, 0, 0], "damping": 0.5,
-               "impact_zone_smoothing": false, "contact_solver": "jacobi", "ccd_span": "substep"},
+               "impact_zone_smoothing": false, "contact_solver": "jacobi", "ccd_span": "substep",
+               "tethers": 1.1},
   "cloth": [
     {"obj": "flag.obj", "material": {"density": 0.2, "thickness": 0.003}, "pins": [{"points": [0, 3]}]},
     {"generator": "grid", "res": [4, 2], "origin": [0, 2, 0], "u": [1, 0, 0], "v": [0, 0, 0.5],
@@ -128,6 +129,7 @@ TEST(WEFT_TEST_SUITE, io_json_scene_gives_the_expected_scene) {
   EXPECT_FALSE(st.impact_zone_smoothing);
   EXPECT_TRUE(st.jacobi_contacts);
   EXPECT_FALSE(st.ccd_per_pass);
+  EXPECT_EQ(st.tether_stretch, 1.1);
 
   const ClothPoints &p = s.points, &q = want.points;
   ASSERT_EQ(p.size(), 4u + 15u);
@@ -244,6 +246,7 @@ TEST(WEFT_TEST_SUITE, io_json_errors_name_file_and_path) {
       {R"({"settings": {"fps": "24"}})", ": settings.fps: expected a number"},
       {R"({"settings": {"contact_solver": "sor"}})", ": settings.contact_solver: expected \"gauss-seidel\" or \"jacobi\""},
       {R"({"settings": {"ccd_span": "frame"}})", ": settings.ccd_span: expected \"substep\" or \"pass\""},
+      {R"({"settings": {"tethers": 0.9}})", ": settings.tethers: expected 0 (no tethers) or a stretch of at least 1"},
       {cloth0 + R"({"generator": "grid", "material": {"density": "heavy"}}]})",
        ": cloth[1].material.density: expected a number"},
       {cloth0 + R"({"generator": "grid", "material": {"density": -1}}]})",
