@@ -36,17 +36,20 @@ PRESETS = {
     # 2-core CPU: small meshes, one second of animation, a reference 5x beyond the costliest schedule.
     "quick": {"res_scale": 0.25, "frames": 24, "reference": (40, 25, 2), "timeout": 90, "ref_timeout": 120,
               "families": {"substeps": [1, 2, 5, 10, 20], "iterations": [10, 20, 50, 100, 200],
-                           "small-steps": [5, 20], "paper": ["paper-1", "paper-2", "paper-3"]}},
+                           "tethers": [10, 20, 50, 100, 200], "small-steps": [5, 20],
+                           "paper": ["paper-1", "paper-2", "paper-3"]}},
     # GPU: the built-in resolutions, one second of animation, a reference 20x beyond the costliest schedule in
     # iterations per frame and 2x in substeps (about 5 minutes on one H200).
     "full": {"res_scale": 1.0, "frames": 24, "reference": (100, 40, 4), "timeout": 300, "ref_timeout": 600,
              "families": {"substeps": [1, 2, 5, 10, 20], "iterations": [10, 20, 50, 100, 200],
-                          "small-steps": [5, 10, 20, 50], "paper": ["paper-1", "paper-2", "paper-3"]}},
+                          "tethers": [10, 20, 50, 100, 200], "small-steps": [5, 10, 20, 50],
+                          "paper": ["paper-1", "paper-2", "paper-3"]}},
 }
 
 FAMILY_TITLES = {
     "substeps": "substeps x (10 it, 1 pass)",
     "iterations": "1 substep, N it, N/10 passes",
+    "tethers": "1 substep, N it, N/10 passes, tethers 1",
     "small-steps": "substeps x (1 it, 1 pass)",
     "paper": "paper-1/2/3",
 }
@@ -54,13 +57,14 @@ PAPER = {"paper-1": (1, 200, 20), "paper-2": (10, 20, 2), "paper-3": (20, 10, 1)
 
 
 def schedules(families, chosen):
-    """(family, label, substeps, iterations, passes, weft arguments) for every schedule of the grid."""
+    """(family, label, substeps, iterations, passes, weft arguments) for every schedule of the grid. The
+    `tethers` family is `iterations` with `--tethers 1` (docs/solver.md, Tethers)."""
     out = []
     for fam in chosen:
         for v in families.get(fam, []):
             if fam == "substeps":
                 s, it, cp = v, 10, 1
-            elif fam == "iterations":
+            elif fam in ("iterations", "tethers"):
                 s, it, cp = 1, v, max(1, v // 10)
             elif fam == "small-steps":
                 s, it, cp = v, 1, 1
@@ -70,6 +74,8 @@ def schedules(families, chosen):
                 args, label = ["--schedule", v], v
             else:
                 args, label = ["--substeps", s, "--iterations", it, "--collision-passes", cp], f"{s}x{it}it{cp}p"
+            if fam == "tethers":
+                args, label = args + ["--tethers", 1], label + "-t1"
             out.append((fam, label, s, it, cp, args))
     return out
 
@@ -113,7 +119,7 @@ def main():
     ap.add_argument("--res", action="append", default=[], metavar="SCENE=N", help="a scene's resolution, overriding --res-scale")
     ap.add_argument("--frames", type=int, help="frames simulated after the initial one (quick 24, full 24)")
     ap.add_argument("--checkpoints", help="frames compared with the reference (default: 4 evenly spaced, the last included)")
-    ap.add_argument("--families", default="substeps,iterations,small-steps,paper", help="schedule families (default: %(default)s)")
+    ap.add_argument("--families", default="substeps,iterations,tethers,small-steps,paper", help="schedule families (default: %(default)s)")
     ap.add_argument("--reference", help="reference schedule SUBSTEPS,ITERATIONS,PASSES (quick 40,25,2; full 100,40,4)")
     ap.add_argument("--timeout", type=float, help="seconds per run before it is killed (quick 90, full 300)")
     ap.add_argument("--ref-timeout", type=float, help="seconds for a reference run (quick 120, full 600); a scene "
@@ -209,11 +215,11 @@ def main():
                      "error_last": 0.0, "max_strain": rs["max_strain"],
                      "intersections_last": ref_inter, "ke_last": rs["ke_last"], "ke_tail_mean": rs["ke_tail_mean"],
                      "same_bits": "", "message": ""})
-        first_bits = {}  # (substeps, iterations, passes) -> positions at checkpoints on the first backend
+        first_bits = {}  # (substeps, iterations, passes, tethers) -> positions at checkpoints on the first backend
         for b in backends:
-            done = {}  # (substeps, iterations, passes) -> row: a schedule in two families runs once
+            done = {}  # (substeps, iterations, passes, tethers) -> row: a schedule in two families runs once
             for fam, label, s, it, cp, args in grid:
-                key = (s, it, cp)
+                key = (s, it, cp, "--tethers" in args)
                 if key in done:
                     row = dict(done[key], family=fam, schedule=label)
                     rows.append(row)
