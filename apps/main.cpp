@@ -65,7 +65,7 @@ void add_tethers_option(CLI::App* cmd, std::string& value) {
         char* end = nullptr;
         const double x = std::strtod(v.c_str(), &end);
         if (end == v.c_str() || *end != 0 || !(x == 0 || (x >= 1 && x < 1e6)))
-          return "--tethers wants 0 (off) or a stretch of at least 1, got '" + v + "'";
+          return "wants 0 (off) or a stretch of at least 1, got '" + v + "'";
         return "";
       });
 }

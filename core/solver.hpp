@@ -161,10 +161,10 @@ class Solver {
   }
 
   // One Gauss-Seidel sweep, then the tethers, recorded once as a graph, so that on the device a sweep is one
-  // graph launch. On the device each colour is a kernel per row kind, the kinds side by side. The host backends run one
-  // kernel per colour, of any kind: a CPU gains nothing from the smaller kernels, more launches cost more
-  // thread barriers, and Kokkos 3.4's host graphs walk every path back to the root at each submit, which
-  // grows as 2^joins.
+  // graph launch. On the device each colour is a kernel per row kind, the kinds side by side. The host
+  // backends run one kernel per colour, of any kind: a CPU gains nothing from the smaller kernels, more
+  // launches cost more thread barriers, and Kokkos 3.4's host graphs walk every path back to the root at
+  // each submit, which grows as 2^joins.
   void gauss_seidel_sweep(real h) {
     if (colour_kinds_.empty() && tethers_.extent(0) == 0) return;
     if (!sweep_ || sweep_h_ != h) {
@@ -184,8 +184,9 @@ class Solver {
           }
           if (done) node = *done;
         }
-        if (tethers_.extent(0) > 0)
-          (void)node.then_parallel_for("weft::project_tethers", Kokkos::RangePolicy<Exec>(exec_, 0, tethers_.extent(0)),
+        const long nt = long(tethers_.extent(0));
+        if (nt > 0)
+          (void)node.then_parallel_for("weft::project_tethers", Kokkos::RangePolicy<Exec>(exec_, 0, nt),
                                        kernels::ProjectTethers<Mem>{tethers_, state_.x});
       }));
       sweep_h_ = h;

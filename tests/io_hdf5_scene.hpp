@@ -177,8 +177,8 @@ void expect_identical(const Scene& a, const Scene& b) {
   EXPECT_TRUE(same(s.fps, t.fps) && same(s.gravity, t.gravity) && same(s.wind, t.wind) &&
               same(s.velocity_damping, t.velocity_damping) && same(s.static_friction, t.static_friction) &&
               same(s.dynamic_friction, t.dynamic_friction) && same(s.layer_shock, t.layer_shock) &&
-              same(s.parallel_edge_degrees, t.parallel_edge_degrees) && same(s.impact_zone_epsilon, t.impact_zone_epsilon) &&
-              same(s.tether_stretch, t.tether_stretch));
+              same(s.parallel_edge_degrees, t.parallel_edge_degrees) &&
+              same(s.impact_zone_epsilon, t.impact_zone_epsilon) && same(s.tether_stretch, t.tether_stretch));
   EXPECT_TRUE(s.frame_start == t.frame_start && s.frame_end == t.frame_end && s.substeps == t.substeps &&
               s.iterations == t.iterations && s.collision_passes == t.collision_passes &&
               s.smoothing_iterations == t.smoothing_iterations && s.impact_zone_sweeps == t.impact_zone_sweeps &&
