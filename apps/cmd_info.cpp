@@ -21,6 +21,9 @@ std::string vec_string(Vec3 v) {
 }
 
 void print_settings(const SolverSettings& s) {
+  std::ostringstream tethers;
+  if (s.tether_stretch > 0) tethers << s.tether_stretch;
+  else tethers << "off";
   std::cout << "settings: frames " << s.frame_start << "-" << s.frame_end << " at " << s.fps << " fps, substeps "
             << s.substeps << ", iterations " << s.iterations << ", collision passes " << s.collision_passes
             << ", smoothing iterations " << s.smoothing_iterations << "\n"
@@ -33,8 +36,7 @@ void print_settings(const SolverSettings& s) {
             << s.impact_zone_epsilon << ", " << s.impact_zone_sweeps << " sweeps), crossing fail-safe "
             << (s.collision_failsafe ? "on" : "off") << ", contact solver "
             << (s.jacobi_contacts ? "jacobi" : "gauss-seidel") << ", CCD span "
-            << (s.ccd_per_pass ? "pass" : "substep") << ", tethers "
-            << (s.tether_stretch > 0 ? std::to_string(s.tether_stretch) : std::string("off")) << "\n";
+            << (s.ccd_per_pass ? "pass" : "substep") << ", tethers " << tethers.str() << "\n";
 }
 
 void print_scene(const std::string& path) {

@@ -517,4 +517,22 @@ TEST(WEFT_TEST_SUITE, cli_ccd_span_switch_is_recorded_and_resumed) {
   EXPECT_NE(weft.output.find("--ccd-span"), std::string::npos) << weft.output;
 }
 
+TEST(WEFT_TEST_SUITE, cli_tethers_switch_is_recorded_and_resumed) {
+  WEFT_NEED_CLI();
+  const CacheDir dir("cli_tethers");
+  Cli weft(dir);
+  const std::string sheet = "run builtin:hanging-sheet --res 5 --substeps 1 --iterations 5";
+  const std::string run = sheet + " --quiet --tethers 1.05 -o " + dir.file("c.h5");
+  ASSERT_EQ(weft(run + " --frames 1-4"), 0) << weft.output;
+  ASSERT_EQ(weft("info " + dir.file("c.h5")), 0) << weft.output;
+  EXPECT_NE(weft.output.find("tethers 1.05"), std::string::npos) << weft.output;
+  EXPECT_EQ(weft(sheet + " --quiet --frames 1-6 --resume -o " + dir.file("c.h5")), 2);
+  EXPECT_NE(weft.output.find("another tether_stretch setting"), std::string::npos) << weft.output;
+  ASSERT_EQ(weft(run + " --frames 1-6 --resume"), 0) << weft.output;
+  ASSERT_EQ(weft(sheet + " --frames 1-2 --tethers 1"), 0) << weft.output;
+  EXPECT_NE(weft.output.find(" 34 tethers,"), std::string::npos) << weft.output;  // 36 points, 2 pinned
+  EXPECT_NE(weft(sheet + " --frames 1-2 --tethers 0.5"), 0);
+  EXPECT_NE(weft.output.find("--tethers"), std::string::npos) << weft.output;
+}
+
 }  // namespace
