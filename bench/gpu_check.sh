@@ -44,6 +44,8 @@ if has bench; then {
   lim 200 $w --backend cuda check-intersections builtin:twist --frame 97 | tail -1 | sed 's/^/twist after two turns: /'
   echo "== skirt timing (cuda, about 300K triangles)"
   lim 300 $w --backend cuda bench builtin:skirt --res 87 --frames ${SKIRT_FRAMES:-3} --warmup 1 --schedules paper --json "$out/skirt-87.json"
+  echo "== the same with tethers (docs/solver.md, Tethers)"
+  lim 300 $w --backend cuda bench builtin:skirt --res 87 --frames ${SKIRT_FRAMES:-3} --warmup 1 --schedules paper --tethers 1 --json "$out/skirt-87-tethers.json"
   echo "== hanging-sheet timing (cuda)"
   lim 120 $w --backend cuda bench builtin:hanging-sheet --res 388 --frames 5 --schedules paper --json "$out/sheet-388.json"
   if [ -x "$b/bin/weft_bench_cuda" ]; then
