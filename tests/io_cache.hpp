@@ -465,56 +465,52 @@ TEST(WEFT_TEST_SUITE, cli_info_describes_scene_and_cache_files) {
   EXPECT_NE(weft.output.find("not an HDF5 file"), std::string::npos) << weft.output;
 }
 
+// A run switch: `base on` writes a cache whose `weft info` shows `shown`; a resume without the switch is refused
+// for another `field` setting (the settings differ), one with it continues; `base bad` is refused naming
+// `option`.
+struct Switch {
+  std::string base, on, shown, field, bad, option;
+};
+
+void expect_recorded_and_resumed(Cli& weft, const CacheDir& dir, const Switch& s) {
+  const std::string run = s.base + " " + s.on + " -o " + dir.file("c.h5");
+  ASSERT_EQ(weft(run + " --frames 1-4"), 0) << weft.output;
+  ASSERT_EQ(weft("info " + dir.file("c.h5")), 0) << weft.output;
+  EXPECT_NE(weft.output.find(s.shown), std::string::npos) << weft.output;
+  EXPECT_EQ(weft(s.base + " --frames 1-6 --resume -o " + dir.file("c.h5")), 2);
+  EXPECT_NE(weft.output.find("another " + s.field + " setting"), std::string::npos) << weft.output;
+  ASSERT_EQ(weft(run + " --frames 1-6 --resume"), 0) << weft.output;
+  EXPECT_NE(weft(s.base + " --frames 1-2 " + s.bad), 0);
+  EXPECT_NE(weft.output.find(s.option), std::string::npos) << weft.output;
+}
+
 TEST(WEFT_TEST_SUITE, cli_self_collision_switch_is_recorded_and_resumed) {
   WEFT_NEED_CLI();
   const CacheDir dir("cli_self_collision");
   Cli weft(dir);
   // The hanging sheet has no self collision of its own; --self-collision on adds the collision stage.
-  const std::string run = kSheet + " --self-collision on -o " + dir.file("c.h5");
-  ASSERT_EQ(weft(run + " --frames 1-4"), 0) << weft.output;
-  ASSERT_EQ(weft("info " + dir.file("c.h5")), 0) << weft.output;
-  EXPECT_NE(weft.output.find("self collision on"), std::string::npos) << weft.output;
-  // A resumed run must name it again: without it the settings differ.
-  EXPECT_EQ(weft(kSheet + " --frames 1-6 --resume -o " + dir.file("c.h5")), 2);
-  EXPECT_NE(weft.output.find("another self_collision setting"), std::string::npos) << weft.output;
-  ASSERT_EQ(weft(run + " --frames 1-6 --resume"), 0) << weft.output;
+  expect_recorded_and_resumed(weft, dir, {kSheet, "--self-collision on", "self collision on", "self_collision",
+                                          "--self-collision sometimes", "--self-collision"});
   ASSERT_EQ(weft("check-intersections " + dir.file("c.h5") + " --all-frames"), 0) << weft.output;
   EXPECT_NE(weft.output.find("\nintersections 0\n"), std::string::npos) << weft.output;
-  EXPECT_NE(weft(kSheet + " --frames 1-2 --self-collision sometimes"), 0);
-  EXPECT_NE(weft.output.find("--self-collision"), std::string::npos) << weft.output;
 }
 
 TEST(WEFT_TEST_SUITE, cli_contact_solver_switch_is_recorded_and_resumed) {
   WEFT_NEED_CLI();
   const CacheDir dir("cli_contact_solver");
   Cli weft(dir);
-  const std::string stack = "run builtin:layer-stack --res 4 --quiet";
-  const std::string run = stack + " --contact-solver jacobi -o " + dir.file("c.h5");
-  ASSERT_EQ(weft(run + " --frames 1-4"), 0) << weft.output;
-  ASSERT_EQ(weft("info " + dir.file("c.h5")), 0) << weft.output;
-  EXPECT_NE(weft.output.find("contact solver jacobi"), std::string::npos) << weft.output;
-  EXPECT_EQ(weft(stack + " --frames 1-6 --resume -o " + dir.file("c.h5")), 2);
-  EXPECT_NE(weft.output.find("another jacobi_contacts setting"), std::string::npos) << weft.output;
-  ASSERT_EQ(weft(run + " --frames 1-6 --resume"), 0) << weft.output;
-  EXPECT_NE(weft(stack + " --frames 1-2 --contact-solver sor"), 0);
-  EXPECT_NE(weft.output.find("--contact-solver"), std::string::npos) << weft.output;
+  expect_recorded_and_resumed(weft, dir, {"run builtin:layer-stack --res 4 --quiet", "--contact-solver jacobi",
+                                          "contact solver jacobi", "jacobi_contacts", "--contact-solver sor",
+                                          "--contact-solver"});
 }
 
 TEST(WEFT_TEST_SUITE, cli_ccd_span_switch_is_recorded_and_resumed) {
   WEFT_NEED_CLI();
   const CacheDir dir("cli_ccd_span");
   Cli weft(dir);
-  const std::string stack = "run builtin:layer-stack --res 4 --quiet";
   const std::string span = SolverSettings{}.ccd_per_pass ? "substep" : "pass";  // not the default
-  const std::string run = stack + " --ccd-span " + span + " -o " + dir.file("c.h5");
-  ASSERT_EQ(weft(run + " --frames 1-4"), 0) << weft.output;
-  ASSERT_EQ(weft("info " + dir.file("c.h5")), 0) << weft.output;
-  EXPECT_NE(weft.output.find("CCD span " + span), std::string::npos) << weft.output;
-  EXPECT_EQ(weft(stack + " --frames 1-6 --resume -o " + dir.file("c.h5")), 2);
-  EXPECT_NE(weft.output.find("another ccd_per_pass setting"), std::string::npos) << weft.output;
-  ASSERT_EQ(weft(run + " --frames 1-6 --resume"), 0) << weft.output;
-  EXPECT_NE(weft(stack + " --frames 1-2 --ccd-span frame"), 0);
-  EXPECT_NE(weft.output.find("--ccd-span"), std::string::npos) << weft.output;
+  expect_recorded_and_resumed(weft, dir, {"run builtin:layer-stack --res 4 --quiet", "--ccd-span " + span,
+                                          "CCD span " + span, "ccd_per_pass", "--ccd-span frame", "--ccd-span"});
 }
 
 TEST(WEFT_TEST_SUITE, cli_tethers_switch_is_recorded_and_resumed) {
@@ -522,17 +518,10 @@ TEST(WEFT_TEST_SUITE, cli_tethers_switch_is_recorded_and_resumed) {
   const CacheDir dir("cli_tethers");
   Cli weft(dir);
   const std::string sheet = "run builtin:hanging-sheet --res 5 --substeps 1 --iterations 5";
-  const std::string run = sheet + " --quiet --tethers 1.05 -o " + dir.file("c.h5");
-  ASSERT_EQ(weft(run + " --frames 1-4"), 0) << weft.output;
-  ASSERT_EQ(weft("info " + dir.file("c.h5")), 0) << weft.output;
-  EXPECT_NE(weft.output.find("tethers 1.05"), std::string::npos) << weft.output;
-  EXPECT_EQ(weft(sheet + " --quiet --frames 1-6 --resume -o " + dir.file("c.h5")), 2);
-  EXPECT_NE(weft.output.find("another tether_stretch setting"), std::string::npos) << weft.output;
-  ASSERT_EQ(weft(run + " --frames 1-6 --resume"), 0) << weft.output;
+  expect_recorded_and_resumed(weft, dir, {sheet + " --quiet", "--tethers 1.05", "tethers 1.05", "tether_stretch",
+                                          "--tethers 0.5", "--tethers"});
   ASSERT_EQ(weft(sheet + " --frames 1-2 --tethers 1"), 0) << weft.output;
   EXPECT_NE(weft.output.find(" 34 tethers,"), std::string::npos) << weft.output;  // 36 points, 2 pinned
-  EXPECT_NE(weft(sheet + " --frames 1-2 --tethers 0.5"), 0);
-  EXPECT_NE(weft.output.find("--tethers"), std::string::npos) << weft.output;
 }
 
 }  // namespace
