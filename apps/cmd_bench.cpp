@@ -40,18 +40,21 @@ Result bench_one(Backend b, Scene scene, const Options& o, const Schedule& sc) {
   if (sc.substeps > 0) { st.iterations = sc.iterations; st.collision_passes = sc.passes; st.substeps = sc.substeps; }
   st.frame_end = st.frame_start + o.warmup + o.frames;
   Result r{sc.name, st.iterations, st.collision_passes, st.substeps};
-  {
-    st.profile = false;
-    const long mem0 = device_memory_used_bytes();
+  // A simulation of the scene past its warm-up frames, profiled or not.
+  auto warmed_up = [&](bool profile) {
+    st.profile = profile;
     auto sim = make_simulation(b, scene);
     for (int f = 0; f < o.warmup; ++f) sim->step_frame();
+    return sim;
+  };
+  {
+    const long mem0 = device_memory_used_bytes();
+    auto sim = warmed_up(false);
     for (int f = 0; f < o.frames; ++f) r.ms_frame += 1e3 * sim->step_frame().seconds / o.frames;
     const long mem1 = device_memory_used_bytes();
     r.memory = mem0 >= 0 && mem1 >= 0 ? mem1 - mem0 : -1;
   }
-  st.profile = true;
-  auto sim = make_simulation(b, scene);
-  for (int f = 0; f < o.warmup; ++f) sim->step_frame();
+  auto sim = warmed_up(true);
   long passes = 0;
   for (int f = 0; f < o.frames; ++f) {
     const FrameStats fs = sim->step_frame();
@@ -93,17 +96,18 @@ int bench(const GlobalOptions& g, const Options& o) {
   const char* span = scene.settings.ccd_per_pass ? "pass" : "substep";
   const real tethers = scene.settings.tether_stretch;
   std::printf("%s: %zu points, %zu triangles, backend %s, %s contacts, CCD span %s, tethers %g, %d frames after %d "
-              "warm-up (ms/frame unfenced; the stages from a second, fenced run)\n", scene.name.c_str(), scene.points.size(), scene.triangles.size(),
-              backend_name(b), contacts, span, tethers, o.frames, o.warmup);
+              "warm-up (ms/frame unfenced; the stages from a second, fenced run)\n",
+              scene.name.c_str(), scene.points.size(), scene.triangles.size(), backend_name(b), contacts, span, tethers,
+              o.frames, o.warmup);
   std::printf("%-9s %5s %5s %5s %10s %8s %12s %13s %10s %10s %10s %8s %10s %9s %10s\n", "schedule", "iter", "pass",
-              "sub", "ms/frame", "fenced", "constraints", "ms/col.pass", "contacts", "smoothing", "fail-safe", "rounds", "#contacts",
-              "mem MiB", "max strain");
+              "sub", "ms/frame", "fenced", "constraints", "ms/col.pass", "contacts", "smoothing", "fail-safe", "rounds",
+              "#contacts", "mem MiB", "max strain");
   std::vector<Result> results;
   for (const Schedule& sc : schedules) {
     const Result r = bench_one(b, scene, o, sc);
     std::printf("%-9s %5d %5d %5d %10.2f %8.2f %12.2f %13.3f %10.2f %10.2f %10.2f %8.1f %10.0f %9.1f %10.3f\n",
-                r.schedule.c_str(), r.iterations, r.passes, r.substeps, r.ms_frame, r.ms_frame_fenced, r.ms_constraints, r.ms_pass,
-                r.ms_contacts, r.ms_smoothing, r.ms_failsafe, r.failsafe_rounds, r.contacts,
+                r.schedule.c_str(), r.iterations, r.passes, r.substeps, r.ms_frame, r.ms_frame_fenced, r.ms_constraints,
+                r.ms_pass, r.ms_contacts, r.ms_smoothing, r.ms_failsafe, r.failsafe_rounds, r.contacts,
                 r.memory >= 0 ? r.memory / 1048576.0 : -1.0, r.max_strain);
     if (r.collision_stage)
       std::printf("%-9s collision stage: tree builds %.2f ms/frame; per pass: broad phase %.3f ms, narrow phase (CCD) "

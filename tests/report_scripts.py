@@ -138,6 +138,7 @@ def scaling(weft, tmp):
     check(rows[0]["triangles"] < rows[1]["triangles"], "scaling: triangles grow with the resolution")
     for r in rows:
         check(r["ms_per_frame"] > 0 and r["ms_constraints"] >= 0, f"scaling: res {r['res']} has its stage times")
+        check(r["ms_per_frame_fenced"] > 0, f"scaling: res {r['res']} has the fenced run's time per frame")
     check(is_png(out / "scaling.png"), "scaling: the plot is a PNG")
     (out / "scaling.png").unlink()
     run("scaling.py", "--replot", out / "scaling.json", "--out", out)

@@ -100,7 +100,7 @@ def main():
     tmp.write_text(json.dumps({"meta": meta, "rows": rows}, indent=1) + "\n")
     tmp.replace(out / "scaling.json")
     cols = ["scene", "res", "kind", "triangles", "schedule", "iterations", "collision_passes", "substeps", "ms_per_frame",
-            "ms_constraints", "ms_per_collision_pass", "ms_lbvh_build", "ms_broad_phase_per_pass", "ms_narrow_phase_per_pass",
+            "ms_per_frame_fenced", "ms_constraints", "ms_per_collision_pass", "ms_lbvh_build", "ms_broad_phase_per_pass", "ms_narrow_phase_per_pass",
             "ms_colouring_per_pass", "ms_contacts", "ms_smoothing", "ms_failsafe", "failsafe_rounds",
             "contacts", "memory_mib", "ms_per_100k_triangles", "status"]
     with open(out / "scaling.csv.tmp", "w", newline="") as f:
