@@ -145,7 +145,7 @@ void kokkosp_finalize_library() {
   }
   s.cu.sync();
   std::map<std::string, Total> run, gap_before;
-  double busy = 0, idle = 0, span = 0;
+  double busy = 0, idle = 0;
   const Launch* prev = nullptr;
   for (const Launch& l : s.launches) {
     if (!l.end) continue;
@@ -166,8 +166,8 @@ void kokkosp_finalize_library() {
     prev = &l;
   }
   float whole = 0;
-  s.cu.elapsed(&whole, s.launches.front().start, prev->end);
-  span = whole;
+  if (prev) s.cu.elapsed(&whole, s.launches.front().start, prev->end);
+  const double span = whole > 0 ? whole : 1e-9;
   std::fprintf(out, "gpu timeline: %zu launches over %.2f ms: kernels %.2f ms (%.1f%%), between kernels %.2f ms "
                "(%.1f%%: launch latency, read-backs, host work, and the CUDA graphs' runs)\n",
                s.launches.size(), span, busy, 100 * busy / span, idle, 100 * idle / span);
