@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""The four report scripts of bench/reports/, each run end to end at a tiny size against the built weft.
+"""The four report scripts of bench/reports/ and weft's side of bench/peers/newton_compare.py, each run end to
+end at a tiny size against the built weft.
 
     python3 tests/report_scripts.py --weft build/openmp/bin/weft
 
@@ -145,6 +146,25 @@ def scaling(weft, tmp):
     check(is_png(out / "scaling.png"), "scaling: --replot draws the plot again")
 
 
+def peer_comparison(weft, tmp):
+    # Newton is optional (never installed by setup): --skip-newton runs weft's side, its timing from the cache,
+    # its intersection count and the tables.
+    out = tmp / "peer"
+    cmd = [sys.executable, str(ROOT / "bench" / "peers" / "newton_compare.py"), "--quick", "--skip-newton",
+           "--device", "cpu", "--weft", str(weft), "--weft-backend", "openmp", "--threads", "2", "--out", str(out),
+           "--work", str(tmp / "peer-work")]
+    r = subprocess.run(cmd, capture_output=True, text=True, env={**os.environ, "OMP_PROC_BIND": "false"})
+    check(r.returncode == 0, f"newton_compare: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
+    rows = json.loads((out / "results.json").read_text())["rows"]
+    seen = [(x["scene"], x["settings"]["self_collision"]) for x in rows]
+    check(seen == [("hanging-sheet", True), ("hanging-sheet", False), ("twist", True)], f"newton_compare: rows {seen}")
+    for x in rows:
+        check(x["ms_per_frame"] > 0 and x["frames_timed"] > 0, f"newton_compare: {x['scene']} is timed")
+        check(x["intersections"] == 0 and x["max_intersections_any_frame"] == 0,
+              f"newton_compare: weft's {x['scene']} ends free of intersections")
+    check("| twist |" in (out / "results.md").read_text(), "newton_compare: the Markdown table has the twist")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--weft", required=True, help="the weft binary (with the serial and openmp backends)")
@@ -160,7 +180,7 @@ def main():
         return 77
     weft = Path(a.weft).resolve()
     with tempfile.TemporaryDirectory(prefix="weft-reports-") as d:
-        for test in (cross_backend, error_vs_time, stability, scaling):
+        for test in (cross_backend, error_vs_time, stability, scaling, peer_comparison):
             test(weft, Path(d))
             print(f"ok  {test.__name__}", flush=True)
     return 0
