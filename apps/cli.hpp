@@ -27,6 +27,9 @@ Backend resolve_backend(const GlobalOptions& g);
 // --self-collision on|off (run, bench): overrides the scene's self_collision when `value` is not empty.
 void add_self_collision_option(CLI::App* cmd, std::string& value);
 void apply_self_collision(const std::string& value, bool& self_collision);
+// --contact-model proximity|ccd (run, bench): overrides the scene's contact_model when not empty.
+void add_contact_model_option(CLI::App* cmd, std::string& value);
+void apply_contact_model(const std::string& value, ContactModel& model);
 // --contact-solver gauss-seidel|jacobi (run, bench): overrides the scene's jacobi_contacts when not empty.
 void add_contact_solver_option(CLI::App* cmd, std::string& value);
 void apply_contact_solver(const std::string& value, bool& jacobi_contacts);

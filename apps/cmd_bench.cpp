@@ -5,14 +5,15 @@
 #include "io/scene_source.hpp"
 #include "io/trimesh.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace weft::cli {
 namespace {
 
 struct Options {
-  std::string scene, schedules = "current", json, self_collision, contact_solver, ccd_span, tethers;
-  int res = 0, frames = 10, warmup = 2;
+  std::string scene, schedules = "current", json, self_collision, contact_model, contact_solver, ccd_span, tethers;
+  int res = 0, frames = 10, warmup = -1;  // -1: 16 with --schedules paper (the skirt is in contact by then), else 2
 };
 
 struct Schedule { const char* name; int iterations, passes, substeps; };
@@ -26,7 +27,9 @@ struct Result {
   // The collision stage's parts: tree builds per frame; broad phase, narrow phase, colouring per pass.
   double ms_build = 0, ms_broad = 0, ms_narrow = 0, ms_colouring = 0;
   double contacts = 0, failsafe_rounds = 0;  // means per frame
-  double max_strain = 0;                     // the largest of the timed frames' (accuracy, not speed)
+  double queries = 0, early_passes = 0, cut_back = 0;  // proximity contacts: means per frame
+  long intersections = 0;                    // the largest of the timed frames' (cloth triangle pairs)
+  double max_strain = 0, p99_strain = 0;     // the largest of the timed frames' (accuracy, not speed)
   long memory = -1;
   bool collision_stage = false;  // the scene has one (colliders or self collision)
 };
@@ -71,7 +74,12 @@ Result bench_one(Backend b, Scene scene, const Options& o, const Schedule& sc) {
     passes += fs.collision_passes;
     r.contacts += double(fs.contacts) / o.frames;
     r.failsafe_rounds += double(fs.failsafe_rounds) / o.frames;
+    r.queries += double(fs.collision_queries) / o.frames;
+    r.early_passes += double(fs.early_passes) / o.frames;
+    r.cut_back += double(fs.points_cut_back) / o.frames;
     r.max_strain = fs.max_strain > r.max_strain ? fs.max_strain : r.max_strain;
+    r.p99_strain = std::max(r.p99_strain, double(sim->strain_quantile(0.99)));
+    r.intersections = std::max(r.intersections, sim->intersections());
   }
   r.collision_stage = passes > 0;
   for (double* per_pass : {&r.ms_pass, &r.ms_broad, &r.ms_narrow, &r.ms_colouring})
@@ -84,39 +92,48 @@ int bench(const GlobalOptions& g, const Options& o) {
   Runtime rt(g.threads);
   Scene scene = io::load_scene(o.scene, io::BuiltinOptions{o.res});
   apply_self_collision(o.self_collision, scene.settings.self_collision);
+  apply_contact_model(o.contact_model, scene.settings.contact_model);
   apply_contact_solver(o.contact_solver, scene.settings.jacobi_contacts);
   apply_ccd_span(o.ccd_span, scene.settings.ccd_per_pass);
   apply_tethers(o.tethers, scene.settings.tether_stretch);
   warn_about_thickness(scene);
+  Options opt = o;
+  if (opt.warmup < 0) opt.warmup = o.schedules == "paper" ? 16 : 2;
   std::vector<Schedule> schedules;
   if (o.schedules == "paper") schedules = {{"paper-1", 200, 20, 1}, {"paper-2", 20, 2, 10}, {"paper-3", 10, 1, 20}};
   else if (o.schedules == "current") schedules = {{"scene", 0, 0, 0}};
   else throw Error("--schedules is 'paper' or 'current'", 2);
-  const char* contacts = scene.settings.jacobi_contacts ? "jacobi" : "gauss-seidel";
+  const bool proximity = scene.settings.contact_model == ContactModel::Proximity;
+  const char* model = contact_model_name(scene.settings.contact_model);
+  const char* contacts = proximity || scene.settings.jacobi_contacts ? "jacobi" : "gauss-seidel";
   const char* span = scene.settings.ccd_per_pass ? "pass" : "substep";
   const real tethers = scene.settings.tether_stretch;
-  std::printf("%s: %zu points, %zu triangles, backend %s, %s contacts, CCD span %s, tethers %g, %d frames after %d "
-              "warm-up (ms/frame unfenced; the stages from a second, fenced run)\n",
-              scene.name.c_str(), scene.points.size(), scene.triangles.size(), backend_name(b), contacts, span, tethers,
-              o.frames, o.warmup);
-  std::printf("%-9s %5s %5s %5s %10s %8s %12s %13s %10s %10s %10s %8s %10s %9s %10s\n", "schedule", "iter", "pass",
-              "sub", "ms/frame", "fenced", "constraints", "ms/col.pass", "contacts", "smoothing", "fail-safe", "rounds",
-              "#contacts", "mem MiB", "max strain");
+  std::printf("%s: %zu points, %zu triangles, backend %s, contact model %s, %s contacts%s%s, tethers %g, %d frames "
+              "after %d warm-up (ms/frame unfenced; the stages from a second, fenced run)\n",
+              scene.name.c_str(), scene.points.size(), scene.triangles.size(), backend_name(b), model, contacts,
+              proximity ? "" : ", CCD span ", proximity ? "" : span, tethers, opt.frames, opt.warmup);
+  std::printf("%-9s %5s %5s %5s %10s %8s %12s %13s %10s %10s %10s %8s %10s %9s %10s %10s %6s\n", "schedule", "iter",
+              "pass", "sub", "ms/frame", "fenced", "constraints", "ms/col.pass", "contacts", "smoothing", "fail-safe",
+              proximity ? "queries" : "rounds", "#contacts", "mem MiB", "max strain", "p99 strain", "isect");
   std::vector<Result> results;
   for (const Schedule& sc : schedules) {
-    const Result r = bench_one(b, scene, o, sc);
-    std::printf("%-9s %5d %5d %5d %10.2f %8.2f %12.2f %13.3f %10.2f %10.2f %10.2f %8.1f %10.0f %9.1f %10.3f\n",
+    const Result r = bench_one(b, scene, opt, sc);
+    std::printf("%-9s %5d %5d %5d %10.2f %8.2f %12.2f %13.3f %10.2f %10.2f %10.2f %8.1f %10.0f %9.1f %10.3f %10.4f %6ld\n",
                 r.schedule.c_str(), r.iterations, r.passes, r.substeps, r.ms_frame, r.ms_frame_fenced, r.ms_constraints,
-                r.ms_pass, r.ms_contacts, r.ms_smoothing, r.ms_failsafe, r.failsafe_rounds, r.contacts,
-                r.memory >= 0 ? r.memory / 1048576.0 : -1.0, r.max_strain);
-    if (r.collision_stage)
-      std::printf("%-9s collision stage: tree builds %.2f ms/frame; per pass: broad phase %.3f ms, narrow phase (CCD) "
-                  "%.3f ms, contact colouring %.3f ms\n", "", r.ms_build, r.ms_broad, r.ms_narrow, r.ms_colouring);
+                r.ms_pass, r.ms_contacts, r.ms_smoothing, r.ms_failsafe, proximity ? r.queries : r.failsafe_rounds,
+                r.contacts, r.memory >= 0 ? r.memory / 1048576.0 : -1.0, r.max_strain, r.p99_strain, r.intersections);
+    if (r.collision_stage) {
+      std::printf("%-9s collision stage: tree builds %.2f ms/frame; per pass: broad phase %.3f ms, narrow phase %.3f ms, "
+                  "contact colouring %.3f ms\n", "", r.ms_build, r.ms_broad, r.ms_narrow, r.ms_colouring);
+      if (proximity)
+        std::printf("%-9s proximity: %.1f queries per frame (%.1f early), %.0f points cut back per frame\n", "",
+                    r.queries, r.early_passes, r.cut_back);
+    }
     results.push_back(r);
   }
   if (!o.json.empty()) io::write_file_atomically(o.json, [&](std::ostream& out) {
     out << "{\"scene\": \"" << scene.name << "\", \"triangles\": " << scene.triangles.size() << ", \"backend\": \""
-        << backend_name(b) << "\", \"contact_solver\": \"" << contacts << "\", \"ccd_span\": \"" << span
+        << backend_name(b) << "\", \"contact_model\": \"" << model << "\", \"contact_solver\": \"" << contacts << "\", \"ccd_span\": \"" << span
         << "\", \"tether_stretch\": " << tethers << ", \"results\": [";
     for (size_t i = 0; i < results.size(); ++i) {
       const Result& r = results[i];
@@ -129,6 +146,9 @@ int bench(const GlobalOptions& g, const Options& o) {
           << ", \"ms_lbvh_build\": " << r.ms_build << ", \"ms_broad_phase_per_pass\": " << r.ms_broad
           << ", \"ms_narrow_phase_per_pass\": " << r.ms_narrow << ", \"ms_colouring_per_pass\": " << r.ms_colouring
           << ", \"contacts\": " << r.contacts << ", \"max_strain\": " << r.max_strain
+          << ", \"p99_strain\": " << r.p99_strain << ", \"intersections\": " << r.intersections
+          << ", \"queries\": " << r.queries << ", \"early_passes\": " << r.early_passes
+          << ", \"points_cut_back\": " << r.cut_back
           << ", \"memory_bytes\": " << r.memory << "}";
     }
     out << "]}\n";
@@ -142,10 +162,12 @@ void add_bench(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_option("scene", o->scene, "builtin:NAME, scene.json or scene.h5")->required();
   cmd->add_option("--res", o->res, "resolution of a built-in scene")->check(CLI::PositiveNumber);
   cmd->add_option("--frames", o->frames, "frames timed (default 10)")->check(CLI::PositiveNumber);
-  cmd->add_option("--warmup", o->warmup, "frames run before timing (default 2)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--warmup", o->warmup, "frames run before timing (default 16 with --schedules paper, else 2)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--schedules", o->schedules, "current (the scene's) or paper (the paper's three)");
   cmd->add_option("--json", o->json, "also write the results as JSON");
   add_self_collision_option(cmd, o->self_collision);
+  add_contact_model_option(cmd, o->contact_model);
   add_contact_solver_option(cmd, o->contact_solver);
   add_ccd_span_option(cmd, o->ccd_span);
   add_tethers_option(cmd, o->tethers);

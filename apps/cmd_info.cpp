@@ -32,6 +32,11 @@ void print_settings(const SolverSettings& s) {
             << "  self collision " << (s.self_collision ? "on" : "off") << ", friction static " << s.static_friction
             << " dynamic " << s.dynamic_friction << ", layer shock " << s.layer_shock << ", parallel edges "
             << s.parallel_edge_degrees << " degrees\n"
+            << "  contact model " << contact_model_name(s.contact_model);
+  if (s.contact_model == ContactModel::Proximity)
+    std::cout << " (early passes at " << s.early_pass_fraction << " of the points cut back, at most "
+              << s.max_early_passes << " a substep)";
+  std::cout << "\n"
             << "  impact zone smoothing " << (s.impact_zone_smoothing ? "on" : "off") << " (epsilon "
             << s.impact_zone_epsilon << ", " << s.impact_zone_sweeps << " sweeps), crossing fail-safe "
             << (s.collision_failsafe ? "on" : "off") << ", contact solver "

@@ -35,10 +35,21 @@ void apply_self_collision(const std::string& value, bool& self_collision) {
   if (!value.empty()) self_collision = value == "on";
 }
 
+void add_contact_model_option(CLI::App* cmd, std::string& value) {
+  cmd->add_option("--contact-model", value,
+                  "proximity (contacts and per-point displacement bounds: nothing crosses, nothing is moved back) | "
+                  "ccd (the paper's: CCD every pass, crossing fail-safe, impact zones) (default: the scene's)")
+      ->check(CLI::IsMember({"proximity", "ccd"}));
+}
+
+void apply_contact_model(const std::string& value, ContactModel& model) {
+  if (!value.empty()) model = *parse_contact_model(value);
+}
+
 void add_contact_solver_option(CLI::App* cmd, std::string& value) {
   cmd->add_option("--contact-solver", value,
-                  "gauss-seidel (by colours) | jacobi (averaged, two launches an iteration): how contacts are "
-                  "projected (default: the scene's)")
+                  "gauss-seidel (by colours) | jacobi (averaged, two launches an iteration): how the ccd model "
+                  "projects contacts (the proximity model always averages) (default: the scene's)")
       ->check(CLI::IsMember({"gauss-seidel", "jacobi"}));
 }
 

@@ -14,6 +14,7 @@ struct RunOptions {
   int substeps = -1, iterations = -1, collision_passes = -1, smoothing = -1;
   bool no_impact_zones = false, no_failsafe = false;  // switch off impact-zone smoothing, the crossing fail-safe
   std::string self_collision;  // "on" | "off" | "" (the scene's setting)
+  std::string contact_model;   // "proximity" | "ccd" | "" (the scene's setting)
   std::string contact_solver;  // "gauss-seidel" | "jacobi" | "" (the scene's setting)
   std::string ccd_span;        // "substep" | "pass" | "" (the scene's setting)
   std::string tethers;         // tether stretch, "" (the scene's setting)

@@ -5,6 +5,8 @@
 #include "collision/tri_tri.hpp"
 #include "core/solver.hpp"
 
+#include <algorithm>
+
 namespace weft {
 
 template <class Exec>
@@ -31,6 +33,9 @@ class SimulationOn final : public Simulation {
     fs.failsafe_points = after.failsafe_points - before.failsafe_points;
     fs.failsafe_rounds = after.failsafe_rounds - before.failsafe_rounds;
     fs.failsafe_pinned = after.failsafe_pinned - before.failsafe_pinned;
+    fs.collision_queries = after.queries - before.queries;
+    fs.early_passes = after.early_passes - before.early_passes;
+    fs.points_cut_back = after.points_cut_back - before.points_cut_back;
     fs.seconds_lbvh_build = after.seconds_lbvh_build - before.seconds_lbvh_build;
     fs.seconds_broad_phase = after.seconds_broad_phase - before.seconds_broad_phase;
     fs.seconds_narrow_phase = after.seconds_narrow_phase - before.seconds_narrow_phase;
@@ -48,6 +53,13 @@ class SimulationOn final : public Simulation {
   int colour_count() const override { return solver_.colour_count(); }
   long row_count() const override { return solver_.row_count(); }
   long tether_count() const override { return solver_.tether_count(); }
+  real strain_quantile(double q) const override {
+    std::vector<real> e = solver_.distance_strains();
+    if (e.empty()) return 0;
+    const size_t k = std::min(e.size() - 1, size_t(q * double(e.size() - 1) + 0.5));
+    std::nth_element(e.begin(), e.begin() + long(k), e.end());
+    return e[k];
+  }
   long intersections() const override {
     Lbvh<Exec> bvh;
     return count_intersections(bvh, Kokkos::View<const Vec3*, typename Exec::memory_space>(solver_.state().x),

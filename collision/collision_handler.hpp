@@ -1,12 +1,18 @@
-// The collision stage of the frame loop (paper sec. 2-3): LBVH broad phase over swept, thickness-inflated
-// triangle boxes (built at the start of a substep, refit every pass), narrow phase on representative
-// features with CCD and proximity, contacts coloured and projected in the same Gauss-Seidel iterations as
-// the cloth, friction, and impact-zone smoothing of velocities at the end of the substep.
+// The collision stage of the frame loop, in one of two contact models (docs/collisions.md):
+// - proximity (the default): each pass queries the pairs near the cloth where it stands (X0), makes contacts
+//   of those within reach and gives every point a displacement bound (collision/displacement_bounds.hpp);
+//   contacts are projected Jacobi-style in fixed point and every update is cut back to the bounds, so no
+//   pair can cross and nothing is moved back;
+// - ccd (paper sec. 2-3): LBVH broad phase over swept, thickness-inflated triangle boxes, narrow phase on
+//   representative features with CCD and proximity, contacts coloured and projected in the same
+//   Gauss-Seidel iterations as the cloth, and the crossing fail-safe.
+// Both: friction, and impact-zone smoothing of velocities at the end of the substep.
 #pragma once
 #include "collision/aabb.hpp"
 #include "collision/contact_colouring.hpp"
 #include "collision/contact_jacobi.hpp"
 #include "collision/crossing_failsafe.hpp"
+#include "collision/displacement_bounds.hpp"
 #include "collision/impact_zone.hpp"
 #include "collision/lbvh.hpp"
 #include "collision/narrow_pipeline.hpp"
@@ -16,6 +22,7 @@
 #include "core/stage_timer.hpp"
 
 #include <map>
+#include <optional>
 
 namespace weft {
 
@@ -42,6 +49,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
     long failsafe_points = 0;  // moved back by the fail-safe since the handler was made
     long failsafe_rounds = 0;  // its rounds since the handler was made
     long failsafe_pinned = 0;  // pinned points among failsafe_points
+    long queries = 0;          // proximity: full pair queries since the handler was made
+    long early_passes = 0;     // proximity: of them, run early because points were cut back
+    long points_cut_back = 0;  // proximity: points cut back to their bounds, summed over every truncation
     // With profile (fenced), since the handler was made: FrameStats' collision stage times.
     double seconds_lbvh_build = 0, seconds_broad_phase = 0, seconds_narrow_phase = 0, seconds_contact_colouring = 0;
   };
@@ -62,6 +72,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
     per_pass_ = st.ccd_per_pass && st.collision_passes > 1;
     passes_ = st.collision_passes;
     profile_ = st.profile;
+    proximity_ = st.contact_model == ContactModel::Proximity;
+    early_fraction_ = st.early_pass_fraction;
+    max_early_ = st.max_early_passes;
     // Cloth side.
     cloth_tris_ = upload_tris(s.triangles);
     cloth_rmask_ = upload(representative_features(s.triangles, int(s.points.size())), "weft::cloth_rmask");
@@ -78,6 +91,24 @@ class CollisionHandler final : public CollisionStage<Exec> {
     }
     cloth_margin_ = upload(margin, "weft::cloth_margin");
     cloth_failsafe_margin_ = upload(failsafe_margin, "weft::cloth_failsafe_margin");
+    if (proximity_) {
+      // A triangle's smallest query margin: an unfound pair keeps more than (1 - gamma)(m_A + m_B), at
+      // least the contact reach of its points.
+      std::vector<real> floor(s.triangles.size()), ceiling(s.triangles.size());
+      for (size_t t = 0; t < s.triangles.size(); ++t) {
+        floor[t] = margin[t] / (1 - bound_settings_.gamma);
+        real edge = 0;
+        for (int k = 0; k < 3; ++k)
+          edge = std::max(edge, norm(s.points.position[s.triangles[t][(k + 1) % 3]] - s.points.position[s.triangles[t][k]]));
+        ceiling[t] = std::max(floor[t], std::min(edge, 2 * floor[t]));
+      }
+      std::vector<char> kinematic(s.points.size(), 0);
+      for (int k : s.kinematic_point) kinematic[k] = 1;
+      for (size_t i = 0; i < s.points.size(); ++i)
+        movable_ += s.points.mass[i] > 0 && !(s.points.stopped[i] & 1) && !kinematic[i];
+      bounds_.emplace(long(s.points.size()), upload(floor, "weft::bounds_floor"), upload(ceiling, "weft::bounds_ceiling"),
+                      movable_, bound_settings_);
+    }
     cloth_boxes_ = View<Aabb*>("weft::cloth_boxes", s.triangles.size());
     // Collider side: all colliders' triangles over the concatenated vertices; one thickness and friction
     // for all (the largest thickness, the first collider's friction) keeps the kernels simple.
@@ -102,7 +133,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
   // The trees are built once per frame; every pass refits them first.
   void begin_substep(const SolverState<Exec>& s, real, int substep) override {
     pass_in_substep_ = 0;
+    early_in_substep_ = 0;
     if (substep != 0) return;
+    if (proximity_) { build_ = true; return; }  // the first query builds the trees from its own boxes
     timed(stats_.seconds_lbvh_build, [&] {
       update_boxes(s.exec, cloth_side(s), collider_side(s), cloth_margin_);
       cloth_bvh_.build(cloth_boxes_);
@@ -115,6 +148,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   // CCD over the constraint iterations' corrections only, not over the whole substep again. Contacts keep
   // the side their points had at the start of the substep (SideMesh::xo).
   void pass(const SolverState<Exec>& s, real) override {
+    if (proximity_) return proximity_pass(s);
     SideMesh<Mem> cloth = cloth_side(s), collider = collider_side(s);
     if (per_pass_ && pass_in_substep_ > 0) {
       cloth.xs = x_pass_;
@@ -145,6 +179,10 @@ class CollisionHandler final : public CollisionStage<Exec> {
     auto x = s.x, xs = s.x_start;
     auto w = s.w;
     auto cx = s.collider_x, cxs = s.collider_x_start;
+    if (proximity_) {
+      jacobi_run_.project(s.exec, c, ncontacts_, x, xs, w, cx, cxs);
+      return bounds_->truncate(s.exec, x);
+    }
     if (jacobi_) return jacobi_run_.project(s.exec, c, ncontacts_, x, xs, w, cx, cxs);
     for (size_t k = 0; k + 1 < offsets_.size(); ++k)
       Kokkos::parallel_for("weft::project_contacts", Kokkos::RangePolicy<Exec>(s.exec, offsets_[k], offsets_[k + 1]),
@@ -153,6 +191,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
 
   // The crossing fail-safe over fresh candidate pairs (boxes from x_start to the final x).
   void finish_positions(const SolverState<Exec>& s, real) override {
+    if (proximity_) return bounds_->truncate(s.exec, s.x);  // after the smoothing sweeps
     if (!failsafe_) return;
     update_boxes(s.exec, cloth_side(s), collider_side(s), cloth_failsafe_margin_);
     cloth_bvh_.refit(cloth_boxes_);
@@ -171,9 +210,99 @@ class CollisionHandler final : public CollisionStage<Exec> {
     stats_.failsafe_pinned += fs.pinned;
   }
 
+  // Proximity: a query again before the next sweep when more than early_pass_fraction of the points that
+  // move were cut back by the last truncation (reads one counter), at most max_early_passes a substep.
+  bool wants_pass(const SolverState<Exec>& s) override {
+    if (!proximity_) return false;
+    const long cut = bounds_->cut_count(s.exec) + held_;
+    stats_.points_cut_back += cut - held_;
+    held_ = 0;
+    if (early_in_substep_ >= max_early_ || !(real(cut) > early_fraction_ * real(movable_))) return false;
+    ++early_in_substep_;
+    ++stats_.early_passes;
+    return true;
+  }
+
   void end_substep(const SolverState<Exec>& s, real) override {
     if (!smoothing_) return;
     stats_.zones = zones_.smooth(s.exec, contacts_, ncontacts_, s.x, s.collider_x, s.v, epsilon_, sweeps_);
+  }
+
+  // A proximity query (collision/displacement_bounds.hpp): X0 is where the substep started (its first
+  // query: the prediction is then cut back) or where the cloth stands. Self pairs are met in the frame that
+  // translates with the cloth's common move t: boxes at X0 (pinned points swept to their targets less t),
+  // contacts at X0. Collider pairs are met where the cloth goes (X0 + t): boxes swept from X0, and the
+  // colliders' swept over the whole substep in every query, whose narrow phase then also catches, by CCD,
+  // a collider face that has swept over a point this substep, or a point carried through a face: such a
+  // contact is found again at each query until the point is out. Bounds from every candidate pair.
+  void proximity_pass(const SolverState<Exec>& s) {
+    const bool first = pass_in_substep_++ == 0;
+    DisplacementBounds<Exec>& b = *bounds_;
+    SideMesh<Mem> cloth = cloth_side(s), collider = collider_side(s);
+    const bool colliders = collider_boxes_.extent(0) > 0;
+    timed(stats_.seconds_broad_phase, [&] {
+      b.prepare(s.exec, first ? s.x_start : s.x, s.x, s.w, cloth_tris_, first);
+      cloth.x = cloth.xs = cloth.xo = b.x0();
+      const View<const real*> margins = b.margins();
+      swept_triangle_boxes(s.exec, View<const Vec3*>(b.x0()), View<const Vec3*>(b.relative_end()),
+                           View<const int* [3]>(cloth_tris_), margins, cloth_boxes_);
+      if (colliders) {
+        if (swept_boxes_.extent(0) != cloth_boxes_.extent(0))
+          swept_boxes_ = View<Aabb*>("weft::cloth_swept_boxes", cloth_boxes_.extent(0));
+        swept_triangle_boxes(s.exec, View<const Vec3*>(b.x0()), View<const Vec3*>(b.end()),
+                             View<const int* [3]>(cloth_tris_), margins, swept_boxes_);
+        swept_triangle_boxes(s.exec, collider.xs, collider.x, View<const int* [3]>(collider_tris_),
+                             ns_.detect_scale * collider_th_, collider_boxes_);
+      }
+      if (build_) {
+        cloth_bvh_.build(cloth_boxes_);
+        if (colliders) collider_bvh_.build(collider_boxes_);
+        build_ = false;
+      } else {
+        cloth_bvh_.refit(cloth_boxes_);
+        if (colliders) collider_bvh_.refit(collider_boxes_);
+      }
+    });
+    long n = 0;
+    if (self_) {
+      NarrowSettings ns = ns_;
+      ns.self = true;
+      long npairs = 0;
+      timed(stats_.seconds_broad_phase, [&] { npairs = cloth_bvh_.query_self(KeepAllPairs{}, pairs_); });
+      timed(stats_.seconds_narrow_phase, [&] {
+        b.add_pairs(s.exec, cloth, cloth, pairs_, npairs, b.relative_end(), s.w);
+        if (npairs > 0) n += narrow_pairs(cloth, cloth, ns, npairs, n);
+      });
+    }
+    if (colliders) {
+      NarrowSettings ns = ns_;
+      ns.self = false;
+      SideMesh<Mem> moving = cloth;  // from X0 to where the cloth goes
+      moving.x = b.end();
+      long npairs = 0;
+      timed(stats_.seconds_broad_phase, [&] {
+        npairs = collider_bvh_.query(View<const Aabb*>(swept_boxes_), KeepAllPairs{}, pairs_);
+      });
+      timed(stats_.seconds_narrow_phase, [&] {
+        SideMesh<Mem> there = cloth;
+        there.x = there.xs = b.end();
+        b.add_pairs(s.exec, there, collider, pairs_, npairs, b.end(), s.w);
+        if (npairs > 0) n += narrow_pairs(moving, collider, ns, npairs, n);
+      });
+    }
+    timed(stats_.seconds_narrow_phase, [&] {
+      b.finish(s.exec, s.w);
+      // The prediction (or what the last query left of it) cut back to the new bounds; the points still
+      // held short ask for an early pass at the next check.
+      b.truncate_prediction(s.exec, s.x);
+      held_ = b.cut_count(s.exec);
+      stats_.points_cut_back += held_;
+    });
+    ncontacts_ = n;
+    offsets_ = {0};
+    stats_.contacts = n;
+    stats_.colours = 0;
+    ++stats_.queries;
   }
 
   // Narrow phase of the pairs between sides A and B, contacts appended at `first`; returns how many.
@@ -262,7 +391,12 @@ class CollisionHandler final : public CollisionStage<Exec> {
  private:
   NarrowSettings ns_;
   bool self_ = true, smoothing_ = true, failsafe_ = true, profile_ = false, jacobi_ = false, per_pass_ = false;
-  int passes_ = 1, pass_in_substep_ = 0;
+  bool proximity_ = false, build_ = true;
+  int passes_ = 1, pass_in_substep_ = 0, early_in_substep_ = 0, max_early_ = 0;
+  real early_fraction_ = 0;
+  long movable_ = 0, held_ = 0;  // held_: points the last query's truncation held short of their prediction
+  BoundSettings bound_settings_;
+  std::optional<DisplacementBounds<Exec>> bounds_;
   View<Vec3*> x_pass_;  // cloth positions at the previous pass of the substep (ccd_per_pass)
   real epsilon_ = 0.1;
   int sweeps_ = 4;
@@ -272,7 +406,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   View<real*> cloth_th_, cloth_fr_, cloth_dfr_, cloth_margin_, cloth_failsafe_margin_;
   View<int*> cloth_layer_;
   real collider_th_ = 0, collider_fr_ = 1;
-  View<Aabb*> cloth_boxes_, collider_boxes_;
+  View<Aabb*> cloth_boxes_, collider_boxes_, swept_boxes_;  // swept_boxes_: proximity queries against colliders
   Lbvh<Exec> cloth_bvh_, collider_bvh_;
   View<IndexPair*> pairs_{"weft::pairs", 0}, collider_pairs_{"weft::collider_pairs", 0};
   View<Contact*> contacts_{"weft::contacts", 0};

@@ -18,6 +18,9 @@ struct FrameStats {
   long failsafe_points = 0;     // points the crossing fail-safe moved back, over the frame's substeps
   long failsafe_rounds = 0;     // its rounds (each a pass over the candidate pairs), over the frame's substeps
   long failsafe_pinned = 0;     // of failsafe_points, pinned points held back (they trail their animation)
+  long collision_queries = 0;   // proximity contacts: full pair queries over the frame (scheduled and early)
+  long early_passes = 0;        // of them, run early because many points were cut back to their bounds
+  long points_cut_back = 0;     // points cut back to their displacement bounds, summed over the truncations
   real max_pin_lag = 0;         // m, largest distance of a pinned point from its animated target
   double seconds = 0;       // wall time of the frame
   // With SolverSettings::profile (a fence after each stage, so a little slower): wall time per stage.

@@ -6,10 +6,21 @@
 #include "core/vec.hpp"
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace weft {
+
+// How contacts are found and kept (docs/collisions.md): proximity queries with per-point displacement
+// bounds (no crossing by construction), or the paper's CCD every pass with the crossing fail-safe.
+enum class ContactModel { Proximity = 0, Ccd = 1 };
+inline const char* contact_model_name(ContactModel m) { return m == ContactModel::Ccd ? "ccd" : "proximity"; }
+inline std::optional<ContactModel> parse_contact_model(const std::string& s) {
+  if (s == "proximity") return ContactModel::Proximity;
+  if (s == "ccd") return ContactModel::Ccd;
+  return std::nullopt;
+}
 
 struct SolverSettings {
   real fps = 24;
@@ -32,7 +43,10 @@ struct SolverSettings {
   bool impact_zone_smoothing = true;     // paper 2.3: Laplacian smoothing of velocities in unresolved contacts
   real impact_zone_epsilon = 0.1;        // contacts with C < -epsilon * thickness are smoothed
   int impact_zone_sweeps = 4;
-  bool collision_failsafe = true;        // move back points whose motion would cross cloth (collision/crossing_failsafe.hpp)
+  ContactModel contact_model = ContactModel::Proximity;
+  real early_pass_fraction = 0.01;       // proximity: a pass runs early when more of the moving points were cut back
+  int max_early_passes = 4;              // proximity: early passes per substep at most
+  bool collision_failsafe = true;        // ccd model: move back points whose motion would cross cloth (collision/crossing_failsafe.hpp)
   bool jacobi_contacts = false;          // contacts projected Jacobi-style (averaged) instead of by colours
   bool ccd_per_pass = true;              // a later collision pass tests only the motion since the previous pass
   bool profile = false;                  // time each stage (fences between stages)

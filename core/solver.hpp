@@ -104,7 +104,7 @@ class Solver {
     auto strain = row_scratch_;
     Kokkos::parallel_for("weft::stats_strain", Kokkos::RangePolicy<Exec>(exec_, 0, nr),
                          kernels::EdgeStrain<Mem>{rows, x, strain});
-    fs.max_strain = reduce_fixed(exec_, strain, MaxOp{});
+    fs.max_strain = max_(real(0), reduce_fixed(exec_, strain, MaxOp{}));  // -1: not a distance row
     const long nk = long(kin_point_.extent(0));
     if (nk > 0) {
       const auto lag = Kokkos::subview(e, Kokkos::make_pair(0L, nk));
@@ -117,6 +117,17 @@ class Solver {
                             kernels::CountNonFinite<Mem>{x}, bad);
     fs.non_finite = bad;
     return fs;
+  }
+
+  // |length / rest - 1| of every distance row at the current positions (for percentiles; copied back).
+  std::vector<real> distance_strains() const {
+    auto strain = row_scratch_;
+    Kokkos::parallel_for("weft::stats_strain", Kokkos::RangePolicy<Exec>(exec_, 0, rows_.extent(0)),
+                         kernels::EdgeStrain<Mem>{rows_, state_.x, strain});
+    std::vector<real> all = to_host(strain), out;
+    for (real e : all)
+      if (e >= 0) out.push_back(e);
+    return out;
   }
 
   // One substep.
@@ -148,7 +159,14 @@ class Solver {
     for (int it = 0; it < I; ++it) {
       while (next_pass < P && (long(next_pass) * I) / P == it) collision_pass();
       timed(prof_.seconds_constraints, [&] { gauss_seidel_sweep(h); });
-      if (collision_) timed(prof_.seconds_contacts, [&] { collision_->project(state_, h); });
+      if (!collision_) continue;
+      timed(prof_.seconds_contacts, [&] { collision_->project(state_, h); });
+      // An early pass (proximity contacts, when many points were cut back), unless one is scheduled next.
+      const bool scheduled_next = next_pass < P && (long(next_pass) * I) / P == it + 1;
+      if (it + 1 < I && !scheduled_next && collision_->wants_pass(state_)) {
+        timed(prof_.seconds_collision_passes, [&] { collision_->pass(state_, h); });
+        ++prof_.collision_passes;
+      }
     }
     while (next_pass < P) collision_pass();
     timed(prof_.seconds_constraints, [&] {

@@ -190,7 +190,7 @@ struct EdgeStrain {
   Kokkos::View<real*, Mem> out;
   KOKKOS_INLINE_FUNCTION void operator()(long r) const {
     const Row& row = rows(r);
-    out(r) = row.kind == kRowDistance && row.rest > 0 ? abs_(norm(x(row.idx[1]) - x(row.idx[0])) / row.rest - 1) : 0.0;
+    out(r) = row.kind == kRowDistance && row.rest > 0 ? abs_(norm(x(row.idx[1]) - x(row.idx[0])) / row.rest - 1) : -1.0;
   }
 };
 

@@ -27,6 +27,8 @@ class CollisionStage {
   virtual void project(const SolverState<Exec>& s, real h) = 0;  // one Gauss-Seidel sweep over contacts
   virtual void finish_positions(const SolverState<Exec>& s, real h) = 0;  // after the last iteration
   virtual void end_substep(const SolverState<Exec>& s, real h) = 0;  // after v = (x - x_start) / h
+  // After project(): whether a pass should run before the next sweep, beside the scheduled ones.
+  virtual bool wants_pass(const SolverState<Exec>&) { return false; }
 };
 
 }  // namespace weft

@@ -19,7 +19,7 @@ using h5::Handle;
 using Dims = std::vector<hsize_t>;
 
 // The per-frame statistics table: one compound row per frame, fields named as in FrameStats.
-static_assert(sizeof(FrameStats) == 184, "FrameStats changed: update kStatsFields");
+static_assert(sizeof(FrameStats) == 208, "FrameStats changed: update kStatsFields");
 enum class Kind { I32, I64, F64 };
 struct StatsField {
   const char* name;
@@ -46,6 +46,9 @@ const StatsField kStatsFields[] = {
     {"failsafe_rounds", offsetof(FrameStats, failsafe_rounds), Kind::I64},
     {"failsafe_pinned", offsetof(FrameStats, failsafe_pinned), Kind::I64},
     {"max_pin_lag", offsetof(FrameStats, max_pin_lag), Kind::F64},
+    {"collision_queries", offsetof(FrameStats, collision_queries), Kind::I64},
+    {"early_passes", offsetof(FrameStats, early_passes), Kind::I64},
+    {"points_cut_back", offsetof(FrameStats, points_cut_back), Kind::I64},
     {"seconds_lbvh_build", offsetof(FrameStats, seconds_lbvh_build), Kind::F64},
     {"seconds_broad_phase", offsetof(FrameStats, seconds_broad_phase), Kind::F64},
     {"seconds_narrow_phase", offsetof(FrameStats, seconds_narrow_phase), Kind::F64},

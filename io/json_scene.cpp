@@ -174,6 +174,14 @@ void read_settings(const Node& n, Scene& s) {
     if (v != "gauss-seidel" && v != "jacobi") n["contact_solver"].fail("expected \"gauss-seidel\" or \"jacobi\"");
     st.jacobi_contacts = v == "jacobi";
   }
+  if (n.has("contact_model")) {
+    const std::string v = n["contact_model"].string();
+    const auto m = parse_contact_model(v);
+    if (!m) n["contact_model"].fail("expected \"proximity\" or \"ccd\"");
+    st.contact_model = *m;
+  }
+  st.early_pass_fraction = n.number("early_pass_fraction", st.early_pass_fraction, Range::NonNegative);
+  st.max_early_passes = n.integer("max_early_passes", st.max_early_passes, 0);
   if (n.has("ccd_span")) {
     const std::string v = n["ccd_span"].string();
     if (v != "substep" && v != "pass") n["ccd_span"].fail("expected \"substep\" or \"pass\"");

@@ -11,7 +11,7 @@ namespace {
 // A field added to these structs must be added to the file (and the format version raised): the sizes are
 // checked so that the scene file does not silently drop it (a field that fits in padding escapes the check).
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is stored as 3 doubles");
-static_assert(sizeof(SolverSettings) == 160, "SolverSettings changed: update the settings tables below");
+static_assert(sizeof(SolverSettings) == 176, "SolverSettings changed: update the settings tables below");
 static_assert(sizeof(XpbdMaterial) == 24 && sizeof(DistanceConstraint) == 40 && sizeof(BendConstraint) == 48 &&
                   sizeof(TriarapConstraint) == 88 && sizeof(PinConstraint) == 72 && sizeof(AttachConstraint) == 64 &&
                   sizeof(PtPrimConstraint) == 96 && sizeof(FemConstraint) == 88,
@@ -29,6 +29,7 @@ const std::pair<const char*, real SolverSettings::*> kRealSettings[] = {
     {"parallel_edge_degrees", &SolverSettings::parallel_edge_degrees},
     {"impact_zone_epsilon", &SolverSettings::impact_zone_epsilon},
     {"tether_stretch", &SolverSettings::tether_stretch},
+    {"early_pass_fraction", &SolverSettings::early_pass_fraction},
 };
 const std::pair<const char*, int SolverSettings::*> kIntSettings[] = {
     {"frame_start", &SolverSettings::frame_start},
@@ -38,6 +39,7 @@ const std::pair<const char*, int SolverSettings::*> kIntSettings[] = {
     {"collision_passes", &SolverSettings::collision_passes},
     {"smoothing_iterations", &SolverSettings::smoothing_iterations},
     {"impact_zone_sweeps", &SolverSettings::impact_zone_sweeps},
+    {"max_early_passes", &SolverSettings::max_early_passes},
 };
 const std::pair<const char*, bool SolverSettings::*> kBoolSettings[] = {
     {"self_collision", &SolverSettings::self_collision},
@@ -333,6 +335,7 @@ void write_settings(const h5::File& f, const std::string& group, const SolverSet
   for (const auto& [name, m] : kIntSettings) h5::write_attribute(f, group, name, s.*m);
   for (const auto& [name, m] : kBoolSettings) h5::write_attribute(f, group, name, int(s.*m));
   for (const auto& [name, m] : kVecSettings) h5::write_vector_attribute(f, group, name, {(s.*m).x, (s.*m).y, (s.*m).z});
+  h5::write_attribute(f, group, "contact_model", contact_model_name(s.contact_model));
 }
 
 SolverSettings read_settings(const h5::File& f, const std::string& group) {
@@ -340,9 +343,22 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
   for (const auto& [name, m] : kRealSettings) {
     // Absent in files written before tethers existed: none.
     if (std::strcmp(name, "tether_stretch") == 0 && !h5::has_attribute(f, group, name)) continue;
+    // Absent in files written before proximity contacts: they ran the ccd model, which has none.
+    if (std::strcmp(name, "early_pass_fraction") == 0 && !h5::has_attribute(f, group, name)) continue;
     s.*m = h5::read_attribute<double>(f, group, name);
   }
-  for (const auto& [name, m] : kIntSettings) s.*m = h5::read_attribute<int>(f, group, name);
+  for (const auto& [name, m] : kIntSettings) {
+    if (std::strcmp(name, "max_early_passes") == 0 && !h5::has_attribute(f, group, name)) continue;
+    s.*m = h5::read_attribute<int>(f, group, name);
+  }
+  // Files written before the proximity model ran the paper's.
+  s.contact_model = ContactModel::Ccd;
+  if (h5::has_attribute(f, group, "contact_model")) {
+    const std::string m = h5::read_string_attribute(f, group, "contact_model");
+    const auto model = parse_contact_model(m);
+    if (!model) throw FormatError(f.path() + ": " + group + ": unknown contact_model '" + m + "' (proximity or ccd)");
+    s.contact_model = *model;
+  }
   for (const auto& [name, m] : kBoolSettings) {
     // Added after the first files of this format version were written: absent means the default.
     const bool optional = std::strcmp(name, "collision_failsafe") == 0 || std::strcmp(name, "jacobi_contacts") == 0;
@@ -367,6 +383,7 @@ std::vector<std::string> differing_settings(const SolverSettings& a, const Solve
     if (a.*m != b.*m) names.push_back(name);
   for (const auto& [name, m] : kBoolSettings)
     if (a.*m != b.*m) names.push_back(name);
+  if (a.contact_model != b.contact_model) names.push_back("contact_model");
   for (const auto& [name, m] : kVecSettings)
     if (!same((a.*m).x, (b.*m).x) || !same((a.*m).y, (b.*m).y) || !same((a.*m).z, (b.*m).z)) names.push_back(name);
   return names;

@@ -495,13 +495,25 @@ TEST(WEFT_TEST_SUITE, cli_self_collision_switch_is_recorded_and_resumed) {
   EXPECT_NE(weft.output.find("\nintersections 0\n"), std::string::npos) << weft.output;
 }
 
+TEST(WEFT_TEST_SUITE, cli_contact_model_switch_is_recorded_and_resumed) {
+  WEFT_NEED_CLI();
+  const CacheDir dir("cli_contact_model");
+  Cli weft(dir);
+  expect_recorded_and_resumed(weft, dir, {"run builtin:layer-stack --res 4 --quiet", "--contact-model ccd",
+                                          "contact model ccd", "contact_model", "--contact-model ipc",
+                                          "--contact-model"});
+  // The default reports its queries per frame.
+  ASSERT_EQ(weft("run builtin:layer-stack --res 4 --frames 1-2"), 0) << weft.output;
+  EXPECT_NE(weft.output.find("queries 20 ("), std::string::npos) << weft.output;
+}
+
 TEST(WEFT_TEST_SUITE, cli_contact_solver_switch_is_recorded_and_resumed) {
   WEFT_NEED_CLI();
   const CacheDir dir("cli_contact_solver");
   Cli weft(dir);
-  expect_recorded_and_resumed(weft, dir, {"run builtin:layer-stack --res 4 --quiet", "--contact-solver jacobi",
-                                          "contact solver jacobi", "jacobi_contacts", "--contact-solver sor",
-                                          "--contact-solver"});
+  expect_recorded_and_resumed(weft, dir, {"run builtin:layer-stack --res 4 --quiet --contact-model ccd",
+                                          "--contact-solver jacobi", "contact solver jacobi", "jacobi_contacts",
+                                          "--contact-solver sor", "--contact-solver"});
 }
 
 TEST(WEFT_TEST_SUITE, cli_ccd_span_switch_is_recorded_and_resumed) {
@@ -509,7 +521,7 @@ TEST(WEFT_TEST_SUITE, cli_ccd_span_switch_is_recorded_and_resumed) {
   const CacheDir dir("cli_ccd_span");
   Cli weft(dir);
   const std::string span = SolverSettings{}.ccd_per_pass ? "substep" : "pass";  // not the default
-  expect_recorded_and_resumed(weft, dir, {"run builtin:layer-stack --res 4 --quiet", "--ccd-span " + span,
+  expect_recorded_and_resumed(weft, dir, {"run builtin:layer-stack --res 4 --quiet --contact-model ccd", "--ccd-span " + span,
                                           "CCD span " + span, "ccd_per_pass", "--ccd-span frame", "--ccd-span"});
 }
 

@@ -1,0 +1,335 @@
+// Per-point displacement bounds (docs/collisions.md, "Proximity contacts and displacement bounds"): at each
+// query every cloth point gets a distance b it may move from where the query saw it (X0), small enough that
+// no vertex-face or edge-edge pair can cross before the next query; every position update is then cut back
+// to it. With b = gamma min(d, Q) (gamma < 1/2, d the nearest feature pair the point belongs to, Q the
+// query reach of its triangles), a found pair at distance d keeps at least (1 - 2 gamma) d, and a pair the
+// query did not find (farther than m_A + m_B, its triangles' margins) keeps more than
+// (1 - gamma)(m_A + m_B), which the margins make at least the contact reach.
+//
+// Distances are folded per point by integer atomic min on fixed-point values (2^-40 m), so the bounds are
+// the same bits on every backend and thread count; the truncation counts the points it cut back.
+#pragma once
+#include "collision/ccd_proximity.hpp"
+#include "collision/lbvh.hpp"  // IndexPair
+#include "collision/narrow_phase.hpp"
+#include "core/reduce.hpp"
+
+#include <Kokkos_Core.hpp>
+
+namespace weft {
+
+namespace bounds_detail {
+
+using Fixed = unsigned long long;
+constexpr real kScale = 1099511627776.0;  // 2^40 per metre
+constexpr real kLimit = 1.0e6;            // metres: farther counts as this far (2^40 1e6 < 2^64)
+constexpr Fixed kFar = Fixed(kLimit * kScale);
+
+// Rounds down, so a folded distance is never larger than the true one.
+KOKKOS_INLINE_FUNCTION Fixed to_fixed(real d) { return d < kLimit ? Fixed(max_(d, real(0)) * kScale) : kFar; }
+KOKKOS_INLINE_FUNCTION real from_fixed(Fixed f) { return real(f) / kScale; }
+
+// Per point, component k of the move it wants from X0 (its prediction, or the deficit left by the last
+// query), 0 for points that do not move: summed, the common translation t.
+template <class Mem>
+struct WantedComponent {
+  Kokkos::View<const Vec3*, Mem> x, x0, deficit;
+  Kokkos::View<const real*, Mem> w;
+  Kokkos::View<real*, Mem> out;
+  int k;
+  bool resume;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    if (!(w(i) > 0)) { out(i) = 0; return; }
+    const Vec3 d = resume ? x(i) + deficit(i) - x0(i) : x(i) - x0(i);
+    out(i) = k == 0 ? d.x : k == 1 ? d.y : d.z;
+  }
+};
+
+// Per point: the largest move wanted since the last query beside the common translation t, and two
+// position sets for the boxes: `xrel`, where the point goes seen from the translating frame (X0; a pinned
+// point's target less t), and `xb`, where it goes (X0 + t; a pinned point's target).
+template <class Mem>
+struct PreparePoints {
+  Kokkos::View<const Vec3*, Mem> x, x0, deficit;
+  Kokkos::View<const real*, Mem> w;
+  Kokkos::View<real*, Mem> want;
+  Kokkos::View<Vec3*, Mem> xrel, xb;
+  Kokkos::View<Fixed*, Mem> dmin, qmin;
+  Vec3 t;
+  bool resume;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    const bool free = w(i) > 0;
+    const Vec3 target = free && resume ? x(i) + deficit(i) : x(i);
+    if (free) want(i) = max_(want(i), norm(target - x0(i) - t));
+    xrel(i) = free ? x0(i) : x(i) - t;
+    xb(i) = free ? x0(i) + t : x(i);
+    dmin(i) = kFar;
+    qmin(i) = kFar;
+  }
+};
+
+// Per triangle: its query margin, from what its corners want to move (a point may move gamma times its
+// triangles' margin), between the contact-reach floor and a ceiling (the triangle's longest edge, at
+// most twice the floor: a point's bound is held to gamma times its distance to its own mesh's next
+// features or the next layer, about that far, so a wider query would only add pairs); each corner keeps
+// the smallest margin of its triangles.
+template <class Mem>
+struct TriangleMargins {
+  Kokkos::View<const int* [3], Mem> tris;
+  Kokkos::View<const real*, Mem> floor, ceiling, want;
+  Kokkos::View<real*, Mem> margin;
+  Kokkos::View<Fixed*, Mem> qmin;
+  real gamma;
+  KOKKOS_INLINE_FUNCTION void operator()(long t) const {
+    const int a = tris(t, 0), b = tris(t, 1), c = tris(t, 2);
+    const real wanted = max_(want(a), max_(want(b), want(c))) / gamma;
+    const real m = max_(floor(t), min_(wanted, ceiling(t)));
+    margin(t) = m;
+    const Fixed f = to_fixed(m);
+    Kokkos::atomic_fetch_min(&qmin(a), f);
+    Kokkos::atomic_fetch_min(&qmin(b), f);
+    Kokkos::atomic_fetch_min(&qmin(c), f);
+  }
+};
+
+// Per candidate triangle pair: every vertex-face and edge-edge pair of its representative features that
+// shares no point, measured at X0, folded into the free points' nearest distances. A pinned (or stopped)
+// corner moves to its target whatever the bounds say, so its move is taken off the pair's distance first.
+// Collider pairs count only while farther than contact reach: a point in contact with a collider is held
+// on its side by the contact, and must stay free to be pushed out.
+template <class Mem>
+struct PairDistances {
+  // Self pairs: A and B the cloth at X0, and `xend` where its points go seen from the translating frame
+  // (pinned points move, the others not). Collider pairs: A the cloth where it goes (X0 + t, pinned points
+  // at their targets; xend the same), B the colliders at the end of the substep.
+  SideMesh<Mem> A, B;
+  Kokkos::View<const IndexPair*, Mem> pairs;
+  Kokkos::View<const Vec3*, Mem> xend;
+  Kokkos::View<const real*, Mem> w;
+  Kokkos::View<const real*, Mem> margin;
+  Kokkos::View<Fixed*, Mem> dmin;
+  real detect_scale;
+
+  KOKKOS_INLINE_FUNCTION real pinned_move(const SideMesh<Mem>& S, int v) const {
+    return S.collider || w(v) > 0 ? real(0) : norm(xend(v) - S.x(v));
+  }
+  KOKKOS_INLINE_FUNCTION void fold(const SideMesh<Mem>& S, int v, Fixed f) const {
+    if (!S.collider && w(v) > 0) Kokkos::atomic_fetch_min(&dmin(v), f);
+  }
+  // Feature pair of points pa[0..na) on side SA and pb[0..nb) on side SB at distance d, within `reach`
+  // (the sum of the two triangles' margins: farther pairs cannot lower any bound).
+  template <int NA, int NB>
+  KOKKOS_INLINE_FUNCTION void record(const SideMesh<Mem>& SA, const int (&pa)[NA], const SideMesh<Mem>& SB,
+                                     const int (&pb)[NB], real d, real reach, real contact) const {
+    if (!(d < reach)) return;
+    if ((SA.collider || SB.collider) && d < contact) return;
+    real ma = 0, mb = 0;
+    for (int k = 0; k < NA; ++k) ma = max_(ma, pinned_move(SA, pa[k]));
+    for (int k = 0; k < NB; ++k) mb = max_(mb, pinned_move(SB, pb[k]));
+    const Fixed f = to_fixed(d - ma - mb);
+    for (int k = 0; k < NA; ++k) fold(SA, pa[k], f);
+    for (int k = 0; k < NB; ++k) fold(SB, pb[k], f);
+  }
+  KOKKOS_INLINE_FUNCTION real margin_of(const SideMesh<Mem>& S, int t) const {
+    return S.collider ? detect_scale * S.uniform_thickness : margin(t);
+  }
+  // Vertex k of triangle TP on side P against triangle TF on side F.
+  KOKKOS_INLINE_FUNCTION void vertex_face(const SideMesh<Mem>& P, int TP, int k, const SideMesh<Mem>& F, int TF,
+                                          real reach) const {
+    const int p = P.tris(TP, k), f[3] = {F.tris(TF, 0), F.tris(TF, 1), F.tris(TF, 2)};
+    if (!P.collider && !F.collider && (p == f[0] || p == f[1] || p == f[2])) return;
+    real u, v, s;
+    const real d = sqrt_(point_triangle_distance2(P.x(p), F.x(f[0]), F.x(f[1]), F.x(f[2]), u, v, s));
+    const int pp[1] = {p};
+    record(P, pp, F, f, d, reach, detect_scale * (P.th(p) + narrow_detail::face_th(F, TF)));
+  }
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    const int ta = pairs(i).first, tb = pairs(i).second;
+    const real reach = margin_of(A, ta) + margin_of(B, tb);
+    const uint8_t ra = A.rmask(ta), rb = B.rmask(tb);
+    for (int k = 0; k < 3; ++k) {
+      if ((ra >> k) & 1) vertex_face(A, ta, k, B, tb, reach);
+      if ((rb >> k) & 1) vertex_face(B, tb, k, A, ta, reach);
+    }
+    for (int ka = 0; ka < 3; ++ka) {
+      if (!((ra >> (3 + ka)) & 1)) continue;
+      const int ea[2] = {A.tris(ta, ka), A.tris(ta, (ka + 1) % 3)};
+      for (int kb = 0; kb < 3; ++kb) {
+        if (!((rb >> (3 + kb)) & 1)) continue;
+        const int eb[2] = {B.tris(tb, kb), B.tris(tb, (kb + 1) % 3)};
+        if (!B.collider && narrow_detail::shares(ea[0], ea[1], eb[0], eb[1])) continue;
+        real s, t;
+        const real d = sqrt_(segment_segment_distance2(A.x(ea[0]), A.x(ea[1]), B.x(eb[0]), B.x(eb[1]), s, t));
+        const real th = max_(A.th(ea[0]), A.th(ea[1])) + max_(B.th(eb[0]), B.th(eb[1]));
+        record(A, ea, B, eb, d, reach, detect_scale * th);
+      }
+    }
+  }
+};
+
+// Per point: b = gamma min(d, Q) for points that move; the wanted move starts again from 0.
+template <class Mem>
+struct FinishBounds {
+  Kokkos::View<const real*, Mem> w;
+  Kokkos::View<const Fixed*, Mem> dmin, qmin;
+  Kokkos::View<real*, Mem> bound, want;
+  real gamma;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    const Fixed f = dmin(i) < qmin(i) ? dmin(i) : qmin(i);
+    bound(i) = w(i) > 0 ? gamma * from_fixed(f) : from_fixed(kFar);
+    want(i) = 0;
+  }
+};
+
+// Per point (that moves: bounds of the others are far): cut its move from X0 + t back to its bound; counts the points cut back and keeps the largest
+// move wanted (the next query's margins grow to let it through). With `carry`, the part cut off is kept
+// as the point's deficit (the prediction's motion, handed on to the next query); first adds the deficit
+// kept so far.
+template <class Mem>
+struct Truncate {
+  Kokkos::View<Vec3*, Mem> x;
+  Kokkos::View<const Vec3*, Mem> x0;
+  Kokkos::View<const real*, Mem> bound;
+  Kokkos::View<real*, Mem> want;
+  Kokkos::View<Vec3*, Mem> deficit;
+  Kokkos::View<int*, Mem> cut;  // per point: cut back by this truncation
+  Vec3 t;
+  bool carry, resume;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    Vec3 xi = x(i);
+    if (resume) xi += deficit(i);
+    const Vec3 base = x0(i) + t, d = xi - base;
+    const real l2 = norm2(d), b = bound(i);
+    if (!(l2 > b * b)) {
+      if (resume) x(i) = xi;
+      if (carry) deficit(i) = Vec3{0, 0, 0};
+      cut(i) = 0;
+      return;
+    }
+    const real l = sqrt_(l2);
+    want(i) = max_(want(i), l);
+    const Vec3 kept = base + (b / l) * d;
+    x(i) = kept;
+    if (carry) deficit(i) = xi - kept;
+    cut(i) = 1;
+  }
+};
+
+// The points the last truncation cut back (an integer sum: the same on every backend). One counter
+// bumped by every thread instead cost 10 ms a truncation on the H100 where most points were cut back.
+template <class Mem>
+struct CountCut {
+  Kokkos::View<const int*, Mem> cut;
+  KOKKOS_INLINE_FUNCTION void operator()(long i, long& acc) const { acc += cut(i); }
+};
+
+}  // namespace bounds_detail
+
+struct BoundSettings {
+  real gamma = 0.4;          // a point moves at most gamma times its nearest distance (< 1/2)
+  real detect_scale = 1.25;  // the contact reach, as the narrow phase's (times the two thicknesses)
+};
+
+// The bounds' working memory and kernels. Usage per query: prepare() (the common translation and the
+// margins for the boxes), then the caller builds boxes and queries pairs, add_pairs() for each pair list,
+// finish(), truncate_prediction(); truncate() after every position update.
+//
+// Bounds hold a point's move beside the common translation t of the query (the mean move the cloth's
+// points want): a rigid translation changes no distance between cloth features, so cloth that falls or
+// sways as a whole is not held to its mesh's spacing per query. Colliders do not translate with it; their
+// pairs are met where the cloth goes (X0 + t), with the narrow phase's CCD over the way there.
+template <class Exec>
+class DisplacementBounds {
+ public:
+  using Mem = typename Exec::memory_space;
+  template <class T>
+  using View = Kokkos::View<T, Mem>;
+
+  // floor(t): triangle t's smallest query margin, the reach an unfound pair must stay beyond; ceiling(t):
+  // its largest.
+  DisplacementBounds(long points, const View<real*>& floor, const View<real*>& ceiling, long movable,
+                     const BoundSettings& s)
+      : s_(s), movable_(movable), floor_(floor), ceiling_(ceiling), x0_("weft::bounds_x0", points),
+        xrel_("weft::bounds_xrel", points), xb_("weft::bounds_xb", points), bound_("weft::bounds", points),
+        want_("weft::bounds_want", points), margin_("weft::bounds_margin", floor.extent(0)),
+        scratch_("weft::bounds_scratch", points), dmin_("weft::bounds_dmin", points),
+        qmin_("weft::bounds_qmin", points), deficit_("weft::bounds_deficit", points), cut_("weft::bounds_cut", points) {}
+
+  const View<Vec3*>& x0() const { return x0_; }
+  const View<Vec3*>& relative_end() const { return xrel_; }  // seen from the translating frame
+  const View<Vec3*>& end() const { return xb_; }             // X0 + t, pinned points at their targets
+  const View<real*>& margins() const { return margin_; }
+  const View<real*>& bounds() const { return bound_; }
+  Vec3 translation() const { return t_; }
+
+  // A new query from positions `from` (X0) while the cloth is at x; `first`: the substep's first query
+  // (the prediction is what the points want), else they want the deficit the last query left. Reads
+  // three sums back.
+  void prepare(const Exec& exec, const View<Vec3*>& from, const View<Vec3*>& x, const View<real*>& w,
+               const View<int* [3]>& tris, bool first) {
+    using namespace bounds_detail;
+    if (from.data() != x0_.data()) Kokkos::deep_copy(exec, x0_, from);
+    const long n = long(x.extent(0));
+    resume_ = !first;
+    real sum[3] = {0, 0, 0};
+    for (int k = 0; k < 3 && movable_ > 0; ++k) {
+      Kokkos::parallel_for("weft::bounds_wanted", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                           WantedComponent<Mem>{x, x0_, deficit_, w, scratch_, k, resume_});
+      sum[k] = reduce_fixed(exec, scratch_, SumOp{});
+    }
+    t_ = movable_ > 0 ? Vec3{sum[0], sum[1], sum[2]} / real(movable_) : Vec3{0, 0, 0};
+    Kokkos::parallel_for("weft::bounds_prepare", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                         PreparePoints<Mem>{x, x0_, deficit_, w, want_, xrel_, xb_, dmin_, qmin_, t_, resume_});
+    Kokkos::parallel_for("weft::bounds_margins", Kokkos::RangePolicy<Exec>(exec, 0, tris.extent(0)),
+                         TriangleMargins<Mem>{tris, floor_, ceiling_, want_, margin_, qmin_, s_.gamma});
+  }
+
+  // The feature pairs of candidate triangle pairs [0, n) between the cloth (A) and side B; xend as
+  // PairDistances says.
+  void add_pairs(const Exec& exec, const SideMesh<Mem>& A, const SideMesh<Mem>& B, const View<IndexPair*>& pairs,
+                 long n, const View<Vec3*>& xend, const View<real*>& w) {
+    if (n == 0) return;
+    Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                         bounds_detail::PairDistances<Mem>{A, B, pairs, xend, w, margin_, dmin_, s_.detect_scale});
+  }
+
+  void finish(const Exec& exec, const View<real*>& w) {
+    Kokkos::parallel_for("weft::bounds_finish", Kokkos::RangePolicy<Exec>(exec, 0, bound_.extent(0)),
+                         bounds_detail::FinishBounds<Mem>{w, dmin_, qmin_, bound_, want_, s_.gamma});
+  }
+
+  // Cuts every point back to its bound around X0 + t, marking the points cut back.
+  void truncate(const Exec& exec, const View<Vec3*>& x) { run_truncate(exec, x, false, false); }
+
+  // At a query: the prediction cut back (first query of a substep), or the deficit left by the last query
+  // added and cut back again. The part cut off is kept for the next query: in XPBD, motion cut off and
+  // not handed on would be lost, as damping.
+  void truncate_prediction(const Exec& exec, const View<Vec3*>& x) { run_truncate(exec, x, true, resume_); }
+
+  // Points the last truncation cut back (reads one sum back).
+  long cut_count(const Exec& exec) const {
+    long h = 0;
+    Kokkos::parallel_reduce("weft::bounds_count_cut", Kokkos::RangePolicy<Exec>(exec, 0, cut_.extent(0)),
+                            bounds_detail::CountCut<Mem>{cut_}, h);
+    return h;
+  }
+
+ private:
+  void run_truncate(const Exec& exec, const View<Vec3*>& x, bool carry, bool resume) {
+    Kokkos::parallel_for("weft::bounds_truncate", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
+                         bounds_detail::Truncate<Mem>{x, x0_, bound_, want_, deficit_, cut_, t_, carry, resume});
+  }
+
+  BoundSettings s_;
+  long movable_;
+  View<real*> floor_, ceiling_;
+  View<Vec3*> x0_, xrel_, xb_;
+  View<real*> bound_, want_, margin_, scratch_;
+  View<bounds_detail::Fixed*> dmin_, qmin_;
+  View<Vec3*> deficit_;  // per point, the prediction's motion still to hand on
+  View<int*> cut_;
+  Vec3 t_{0, 0, 0};
+  bool resume_ = false;
+};
+
+}  // namespace weft
