@@ -29,9 +29,10 @@ if has hashes; then {
       echo "$scene $cfg: $($w $cfg run builtin:$scene --res 12 --frames 1-12 --hash --quiet | tail -1)"
     done
   done
-  for scene in layer-stack skirt; do  # Jacobi contacts: fixed-point sums, the same bits everywhere
+  for scene in layer-stack skirt; do  # the ccd model, with its Jacobi contacts too
     for cfg in "--backend cuda" "--backend openmp --threads 16"; do
-      echo "$scene jacobi $cfg: $($w $cfg run builtin:$scene --res 12 --frames 1-12 --contact-solver jacobi --hash --quiet | tail -1)"
+      echo "$scene ccd $cfg: $($w $cfg run builtin:$scene --res 12 --frames 1-12 --contact-model ccd --hash --quiet | tail -1)"
+      echo "$scene ccd jacobi $cfg: $($w $cfg run builtin:$scene --res 12 --frames 1-12 --contact-model ccd --contact-solver jacobi --hash --quiet | tail -1)"
     done
   done
   if [ -d .devdata/ccd ]; then echo "== ccd-eval"; $w --backend cuda ccd-eval .devdata/ccd | tail -1; fi
@@ -42,10 +43,12 @@ if has bench; then {
   echo "== intersections"
   lim 150 $w --backend cuda check-intersections builtin:layer-stack --frame 72 | tail -1 | sed 's/^/layer-stack at frame 72: /'
   lim 200 $w --backend cuda check-intersections builtin:twist --frame 97 | tail -1 | sed 's/^/twist after two turns: /'
-  echo "== skirt timing (cuda, about 300K triangles)"
-  lim 300 $w --backend cuda bench builtin:skirt --res 87 --frames ${SKIRT_FRAMES:-3} --warmup 1 --schedules paper --json "$out/skirt-87.json"
-  echo "== the same with tethers (docs/solver.md, Tethers)"
-  lim 300 $w --backend cuda bench builtin:skirt --res 87 --frames ${SKIRT_FRAMES:-3} --warmup 1 --schedules paper --tethers 1 --json "$out/skirt-87-tethers.json"
+  echo "== skirt timing in contact (cuda, about 300K triangles, 16 warm-up frames), proximity contacts, tethers"
+  lim 200 $w --backend cuda bench builtin:skirt --res 87 --frames ${SKIRT_FRAMES:-2} --schedules paper --tethers 1 --json "$out/skirt-87-tethers.json"
+  echo "== the same, the ccd model (the paper's), no tethers"
+  lim 200 $w --backend cuda bench builtin:skirt --res 87 --frames ${SKIRT_FRAMES:-2} --schedules paper --contact-model ccd --json "$out/skirt-87-ccd.json"
+  echo "== 50-layer drop in contact (476K triangles)"
+  lim 120 $w --backend cuda bench builtin:layer-drop --res 69 --warmup 9 --frames 2 --json "$out/drop-69.json"
   echo "== hanging-sheet timing (cuda)"
   lim 120 $w --backend cuda bench builtin:hanging-sheet --res 388 --frames 5 --schedules paper --json "$out/sheet-388.json"
   if [ -x "$b/bin/weft_bench_cuda" ]; then
