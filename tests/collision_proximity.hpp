@@ -70,10 +70,10 @@ TEST(WEFT_TEST_SUITE, proximity_bounds_cut_every_move_back_and_keep_pairs_apart)
 
 // The twist winds the sheet into a rope: the contacts never converge in the schedule's iterations, yet
 // nothing crosses, nothing is moved back, and the pinned edges sit exactly on their animation every frame.
-// At this coarse resolution (12 x 12 quads) the rope jams from about frame 39, where crossings appear (7
-// pairs at frame 39), so the test stops at 36. Not yet traced: pins that follow their animation exactly can
-// drive a jammed rope through itself, which no bound on the free points prevents (the ccd model holds its
-// pins back there, from frame 37 on).
+// At this coarse resolution (12 x 12 quads) crossings appear at frame 39 (7 pairs), so the test stops at
+// 36: they are driven by the pins, which follow their animation exactly. From frame 36 on, hundreds of
+// feature pairs a frame are closer than their pinned corner moves in one substep (8.4 mm), which no bound
+// on the free points can make up for (the ccd model holds its pins back there, from frame 37 on).
 TEST(WEFT_TEST_SUITE, proximity_twist_never_crosses_and_pins_follow_exactly) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::Scene s = weft::io::make_builtin_scene("twist", {12});
