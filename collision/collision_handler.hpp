@@ -181,7 +181,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     auto cx = s.collider_x, cxs = s.collider_x_start;
     if (proximity_) {
       jacobi_run_.project(s.exec, c, ncontacts_, x, xs, w, cx, cxs);
-      return bounds_->truncate(s.exec, x);
+      return bounds_->truncate(s.exec, x, w);
     }
     if (jacobi_) return jacobi_run_.project(s.exec, c, ncontacts_, x, xs, w, cx, cxs);
     for (size_t k = 0; k + 1 < offsets_.size(); ++k)
@@ -191,7 +191,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
 
   // The crossing fail-safe over fresh candidate pairs (boxes from x_start to the final x).
   void finish_positions(const SolverState<Exec>& s, real) override {
-    if (proximity_) return bounds_->truncate(s.exec, s.x);  // after the smoothing sweeps
+    if (proximity_) return bounds_->truncate(s.exec, s.x, s.w);  // after the smoothing sweeps
     if (!failsafe_) return;
     update_boxes(s.exec, cloth_side(s), collider_side(s), cloth_failsafe_margin_);
     cloth_bvh_.refit(cloth_boxes_);
@@ -294,7 +294,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
       b.finish(s.exec, s.w);
       // The prediction (or what the last query left of it) cut back to the new bounds; the points still
       // held short ask for an early pass at the next check.
-      b.truncate_prediction(s.exec, s.x);
+      b.truncate_prediction(s.exec, s.x, s.w);
       held_ = b.cut_count(s.exec);
       stats_.points_cut_back += held_;
     });

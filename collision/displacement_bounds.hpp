@@ -51,15 +51,16 @@ struct WantedComponent {
 template <class Mem>
 struct PreparePoints {
   Kokkos::View<const Vec3*, Mem> x, x0, deficit;
+  Kokkos::View<const int*, Mem> pending;
   Kokkos::View<const real*, Mem> w;
   Kokkos::View<real*, Mem> want;
   Kokkos::View<Vec3*, Mem> xrel, xb;
   Kokkos::View<Fixed*, Mem> dmin, qmin;
   Vec3 t;
-  bool resume;
+  bool resume, pins;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
-    const bool free = w(i) > 0;
-    const Vec3 target = free && resume ? x(i) + deficit(i) : x(i);
+    const bool free = pins || w(i) > 0;
+    const Vec3 target = !resume ? x(i) : w(i) > 0 ? x(i) + deficit(i) : pending(i) ? deficit(i) : x(i);
     if (free) want(i) = max_(want(i), norm(target - x0(i) - t));
     xrel(i) = free ? x0(i) : x(i) - t;
     xb(i) = free ? x0(i) + t : x(i);
@@ -110,11 +111,12 @@ struct PairDistances {
   Kokkos::View<Fixed*, Mem> dmin;
   real detect_scale;
 
+  bool pins;  // pinned points are bounded too
   KOKKOS_INLINE_FUNCTION real pinned_move(const SideMesh<Mem>& S, int v) const {
-    return S.collider || w(v) > 0 ? real(0) : norm(xend(v) - S.x(v));
+    return S.collider || pins || w(v) > 0 ? real(0) : norm(xend(v) - S.x(v));
   }
   KOKKOS_INLINE_FUNCTION void fold(const SideMesh<Mem>& S, int v, Fixed f) const {
-    if (!S.collider && w(v) > 0) Kokkos::atomic_fetch_min(&dmin(v), f);
+    if (!S.collider && (pins || w(v) > 0)) Kokkos::atomic_fetch_min(&dmin(v), f);
   }
   // Feature pair of points pa[0..na) on side SA and pb[0..nb) on side SB at distance d, within `reach`
   // (the sum of the two triangles' margins: farther pairs cannot lower any bound).
@@ -174,9 +176,10 @@ struct FinishBounds {
   Kokkos::View<const Fixed*, Mem> dmin, qmin;
   Kokkos::View<real*, Mem> bound, want;
   real gamma;
+  bool pins;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const Fixed f = dmin(i) < qmin(i) ? dmin(i) : qmin(i);
-    bound(i) = w(i) > 0 ? gamma * from_fixed(f) : from_fixed(kFar);
+    bound(i) = pins || w(i) > 0 ? gamma * from_fixed(f) : from_fixed(kFar);
     want(i) = 0;
   }
 };
@@ -189,20 +192,26 @@ template <class Mem>
 struct Truncate {
   Kokkos::View<Vec3*, Mem> x;
   Kokkos::View<const Vec3*, Mem> x0;
-  Kokkos::View<const real*, Mem> bound;
+  Kokkos::View<const real*, Mem> w, bound;
   Kokkos::View<real*, Mem> want;
-  Kokkos::View<Vec3*, Mem> deficit;
-  Kokkos::View<int*, Mem> cut;  // per point: cut back by this truncation
+  Kokkos::View<Vec3*, Mem> deficit;  // a free point's move still to hand on; a pinned point's target
+  Kokkos::View<int*, Mem> pending;   // a pinned point still short of its target
+  Kokkos::View<int*, Mem> cut;       // per point: cut back by this truncation
   Vec3 t;
   bool carry, resume;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    const bool pinned = !(w(i) > 0);
     Vec3 xi = x(i);
-    if (resume) xi += deficit(i);
+    // A pinned point goes on to its target itself, so it lands on it exactly.
+    if (resume) xi = pinned ? (pending(i) ? deficit(i) : xi) : xi + deficit(i);
     const Vec3 base = x0(i) + t, d = xi - base;
     const real l2 = norm2(d), b = bound(i);
     if (!(l2 > b * b)) {
       if (resume) x(i) = xi;
-      if (carry) deficit(i) = Vec3{0, 0, 0};
+      if (carry) {
+        deficit(i) = Vec3{0, 0, 0};
+        pending(i) = 0;
+      }
       cut(i) = 0;
       return;
     }
@@ -210,7 +219,10 @@ struct Truncate {
     want(i) = max_(want(i), l);
     const Vec3 kept = base + (b / l) * d;
     x(i) = kept;
-    if (carry) deficit(i) = xi - kept;
+    if (carry) {
+      deficit(i) = pinned ? xi : xi - kept;
+      pending(i) = pinned ? 1 : 0;
+    }
     cut(i) = 1;
   }
 };
@@ -228,6 +240,7 @@ struct CountCut {
 struct BoundSettings {
   real gamma = 0.4;          // a point moves at most gamma times its nearest distance (< 1/2)
   real detect_scale = 1.25;  // the contact reach, as the narrow phase's (times the two thicknesses)
+  bool bound_pins = true;    // pinned points reach their targets within their bounds too (else they jump)
 };
 
 // The bounds' working memory and kernels. Usage per query: prepare() (the common translation and the
@@ -253,7 +266,8 @@ class DisplacementBounds {
         xrel_("weft::bounds_xrel", points), xb_("weft::bounds_xb", points), bound_("weft::bounds", points),
         want_("weft::bounds_want", points), margin_("weft::bounds_margin", floor.extent(0)),
         scratch_("weft::bounds_scratch", points), dmin_("weft::bounds_dmin", points),
-        qmin_("weft::bounds_qmin", points), deficit_("weft::bounds_deficit", points), cut_("weft::bounds_cut", points) {}
+        qmin_("weft::bounds_qmin", points), deficit_("weft::bounds_deficit", points), pending_("weft::bounds_pending", points),
+        cut_("weft::bounds_cut", points) {}
 
   const View<Vec3*>& x0() const { return x0_; }
   const View<Vec3*>& relative_end() const { return xrel_; }  // seen from the translating frame
@@ -279,7 +293,8 @@ class DisplacementBounds {
     }
     t_ = movable_ > 0 ? Vec3{sum[0], sum[1], sum[2]} / real(movable_) : Vec3{0, 0, 0};
     Kokkos::parallel_for("weft::bounds_prepare", Kokkos::RangePolicy<Exec>(exec, 0, n),
-                         PreparePoints<Mem>{x, x0_, deficit_, w, want_, xrel_, xb_, dmin_, qmin_, t_, resume_});
+                         PreparePoints<Mem>{x, x0_, deficit_, pending_, w, want_, xrel_, xb_, dmin_, qmin_, t_,
+                                            resume_, s_.bound_pins});
     Kokkos::parallel_for("weft::bounds_margins", Kokkos::RangePolicy<Exec>(exec, 0, tris.extent(0)),
                          TriangleMargins<Mem>{tris, floor_, ceiling_, want_, margin_, qmin_, s_.gamma});
   }
@@ -290,21 +305,24 @@ class DisplacementBounds {
                  long n, const View<Vec3*>& xend, const View<real*>& w) {
     if (n == 0) return;
     Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n),
-                         bounds_detail::PairDistances<Mem>{A, B, pairs, xend, w, margin_, dmin_, s_.detect_scale});
+                         bounds_detail::PairDistances<Mem>{A, B, pairs, xend, w, margin_, dmin_, s_.detect_scale,
+                                                           s_.bound_pins});
   }
 
   void finish(const Exec& exec, const View<real*>& w) {
     Kokkos::parallel_for("weft::bounds_finish", Kokkos::RangePolicy<Exec>(exec, 0, bound_.extent(0)),
-                         bounds_detail::FinishBounds<Mem>{w, dmin_, qmin_, bound_, want_, s_.gamma});
+                         bounds_detail::FinishBounds<Mem>{w, dmin_, qmin_, bound_, want_, s_.gamma, s_.bound_pins});
   }
 
   // Cuts every point back to its bound around X0 + t, marking the points cut back.
-  void truncate(const Exec& exec, const View<Vec3*>& x) { run_truncate(exec, x, false, false); }
+  void truncate(const Exec& exec, const View<Vec3*>& x, const View<real*>& w) { run_truncate(exec, x, w, false, false); }
 
   // At a query: the prediction cut back (first query of a substep), or the deficit left by the last query
   // added and cut back again. The part cut off is kept for the next query: in XPBD, motion cut off and
   // not handed on would be lost, as damping.
-  void truncate_prediction(const Exec& exec, const View<Vec3*>& x) { run_truncate(exec, x, true, resume_); }
+  void truncate_prediction(const Exec& exec, const View<Vec3*>& x, const View<real*>& w) {
+    run_truncate(exec, x, w, true, resume_);
+  }
 
   // Points the last truncation cut back (reads one sum back).
   long cut_count(const Exec& exec) const {
@@ -315,9 +333,10 @@ class DisplacementBounds {
   }
 
  private:
-  void run_truncate(const Exec& exec, const View<Vec3*>& x, bool carry, bool resume) {
+  void run_truncate(const Exec& exec, const View<Vec3*>& x, const View<real*>& w, bool carry, bool resume) {
     Kokkos::parallel_for("weft::bounds_truncate", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
-                         bounds_detail::Truncate<Mem>{x, x0_, bound_, want_, deficit_, cut_, t_, carry, resume});
+                         bounds_detail::Truncate<Mem>{x, x0_, w, bound_, want_, deficit_, pending_, cut_, t_, carry,
+                                                      resume});
   }
 
   BoundSettings s_;
@@ -326,7 +345,8 @@ class DisplacementBounds {
   View<Vec3*> x0_, xrel_, xb_;
   View<real*> bound_, want_, margin_, scratch_;
   View<bounds_detail::Fixed*> dmin_, qmin_;
-  View<Vec3*> deficit_;  // per point, the prediction's motion still to hand on
+  View<Vec3*> deficit_;  // per point, the prediction's motion still to hand on (pinned: its target)
+  View<int*> pending_;   // pinned points short of their target
   View<int*> cut_;
   Vec3 t_{0, 0, 0};
   bool resume_ = false;

@@ -52,7 +52,7 @@ TEST(WEFT_TEST_SUITE, proximity_bounds_cut_every_move_back_and_keep_pairs_apart)
   std::vector<Vec3> moved = x0h;
   for (int i = 0; i < 6; ++i) moved[i] += i < 3 ? Vec3{0.01, 0.05, 0} : Vec3{-0.02, -0.05, 0.01};
   Kokkos::deep_copy(x, device_copy<Vec3, Mem>(moved, "moved"));
-  b.truncate(Exec(), x);
+  b.truncate(Exec(), x, w);
   EXPECT_EQ(b.cut_count(Exec()), 6);
   const auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x);
   real top = -1, bottom = 1;
@@ -64,31 +64,33 @@ TEST(WEFT_TEST_SUITE, proximity_bounds_cut_every_move_back_and_keep_pairs_apart)
   EXPECT_GE(bottom - top, (1 - 2 * bs.gamma) * gap * (1 - 1e-9));
   // A move within the bound is left alone.
   Kokkos::deep_copy(x, device_copy<Vec3, Mem>(x0h, "back"));
-  b.truncate(Exec(), x);
+  b.truncate(Exec(), x, w);
   EXPECT_EQ(b.cut_count(Exec()), 0);
 }
 
 // The twist winds the sheet into a rope: the contacts never converge in the schedule's iterations, yet
-// nothing crosses, nothing is moved back, and the pinned edges sit exactly on their animation every frame.
-// At this coarse resolution (12 x 12 quads) crossings appear at frame 39 (7 pairs), so the test stops at
-// 36: they are driven by the pins, which follow their animation exactly. From frame 36 on, hundreds of
-// feature pairs a frame are closer than their pinned corner moves in one substep (8.4 mm), which no bound
-// on the free points can make up for (the ccd model holds its pins back there, from frame 37 on).
-TEST(WEFT_TEST_SUITE, proximity_twist_never_crosses_and_pins_follow_exactly) {
+// nothing crosses and nothing is moved back. Pins reach their targets within their bounds like every other
+// point, so they sit exactly on their animation until the rope jams next to them (from frame 28 at this
+// coarse size), and then trail it rather than drive the rope through itself.
+TEST(WEFT_TEST_SUITE, proximity_twist_never_crosses_and_pins_follow_until_it_jams) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::Scene s = weft::io::make_builtin_scene("twist", {12});
   ASSERT_EQ(s.settings.contact_model, weft::ContactModel::Proximity);  // the default
   weft::SimulationOn<Exec> sim(s);
   long queries = 0;
-  for (int f = 0; f < 36; ++f) {
+  weft::real lag = 0;
+  for (int f = 0; f < 45; ++f) {
     const weft::FrameStats fs = sim.step_frame();
     ASSERT_EQ(fs.non_finite, 0);
     ASSERT_EQ(fs.failsafe_points, 0);
-    ASSERT_EQ(fs.max_pin_lag, 0.0) << "frame " << fs.frame;
+    if (fs.frame <= 25) ASSERT_EQ(fs.max_pin_lag, 0.0) << "frame " << fs.frame;
+    lag = std::max(lag, fs.max_pin_lag);
     queries += fs.collision_queries;
-    if (f % 3 == 2 || f >= 30) ASSERT_EQ(sim.intersections(), 0) << "frame " << fs.frame;
+    if (f % 3 == 2 || f >= 33) ASSERT_EQ(sim.intersections(), 0) << "frame " << fs.frame;
   }
-  EXPECT_GE(queries, 36 * s.settings.substeps * s.settings.collision_passes);
+  std::printf("twist at 12 x 12: largest pin lag over 45 frames %.3e m\n", lag);
+  EXPECT_GT(lag, 0.0);
+  EXPECT_GE(queries, 45 * s.settings.substeps * s.settings.collision_passes);
 }
 
 // The skirt's waistband is pinned to the swaying body: it tracks the body exactly, and the five layers
