@@ -270,7 +270,8 @@ class Solver {
     });
   }
 
-  // Fraction of its lag a pinned point held back by the crossing fail-safe closes per substep.
+  // Fraction of its lag a pinned point held back (by the ccd model's fail-safe, or by its bound where the
+  // cloth jams) closes per substep before the bounds apply.
   static constexpr real kPinCatchUp = 0.25;
   template <class V>
   std::vector<typename V::non_const_value_type> to_host(const V& d) const {
