@@ -29,6 +29,7 @@ struct Result {
   double contacts = 0, failsafe_rounds = 0;  // means per frame
   double queries = 0, early_passes = 0, cut_back = 0;  // proximity contacts: means per frame
   long intersections = 0;                    // the largest of the timed frames' (cloth triangle pairs)
+  double pin_lag = 0;                        // m, the largest of the timed frames'
   double max_strain = 0, p99_strain = 0;     // the largest of the timed frames' (accuracy, not speed)
   long memory = -1;
   bool collision_stage = false;  // the scene has one (colliders or self collision)
@@ -80,6 +81,7 @@ Result bench_one(Backend b, Scene scene, const Options& o, const Schedule& sc) {
     r.max_strain = fs.max_strain > r.max_strain ? fs.max_strain : r.max_strain;
     r.p99_strain = std::max(r.p99_strain, double(sim->strain_quantile(0.99)));
     r.intersections = std::max(r.intersections, sim->intersections());
+    r.pin_lag = std::max(r.pin_lag, double(fs.max_pin_lag));
   }
   r.collision_stage = passes > 0;
   for (double* per_pass : {&r.ms_pass, &r.ms_broad, &r.ms_narrow, &r.ms_colouring})
@@ -112,16 +114,16 @@ int bench(const GlobalOptions& g, const Options& o) {
               "after %d warm-up (ms/frame unfenced; the stages from a second, fenced run)\n",
               scene.name.c_str(), scene.points.size(), scene.triangles.size(), backend_name(b), model, contacts,
               proximity ? "" : ", CCD span ", proximity ? "" : span, tethers, opt.frames, opt.warmup);
-  std::printf("%-9s %5s %5s %5s %10s %8s %12s %13s %10s %10s %10s %8s %10s %9s %10s %10s %6s\n", "schedule", "iter",
+  std::printf("%-9s %5s %5s %5s %10s %8s %12s %13s %10s %10s %10s %8s %10s %9s %10s %10s %6s %9s\n", "schedule", "iter",
               "pass", "sub", "ms/frame", "fenced", "constraints", "ms/col.pass", "contacts", "smoothing", "fail-safe",
-              proximity ? "queries" : "rounds", "#contacts", "mem MiB", "max strain", "p99 strain", "isect");
+              proximity ? "queries" : "rounds", "#contacts", "mem MiB", "max strain", "p99 strain", "isect", "pin lag m");
   std::vector<Result> results;
   for (const Schedule& sc : schedules) {
     const Result r = bench_one(b, scene, opt, sc);
-    std::printf("%-9s %5d %5d %5d %10.2f %8.2f %12.2f %13.3f %10.2f %10.2f %10.2f %8.1f %10.0f %9.1f %10.3f %10.4f %6ld\n",
+    std::printf("%-9s %5d %5d %5d %10.2f %8.2f %12.2f %13.3f %10.2f %10.2f %10.2f %8.1f %10.0f %9.1f %10.3f %10.4f %6ld %9.2e\n",
                 r.schedule.c_str(), r.iterations, r.passes, r.substeps, r.ms_frame, r.ms_frame_fenced, r.ms_constraints,
                 r.ms_pass, r.ms_contacts, r.ms_smoothing, r.ms_failsafe, proximity ? r.queries : r.failsafe_rounds,
-                r.contacts, r.memory >= 0 ? r.memory / 1048576.0 : -1.0, r.max_strain, r.p99_strain, r.intersections);
+                r.contacts, r.memory >= 0 ? r.memory / 1048576.0 : -1.0, r.max_strain, r.p99_strain, r.intersections, r.pin_lag);
     if (r.collision_stage) {
       std::printf("%-9s collision stage: tree builds %.2f ms/frame; per pass: broad phase %.3f ms, narrow phase %.3f ms, "
                   "contact colouring %.3f ms\n", "", r.ms_build, r.ms_broad, r.ms_narrow, r.ms_colouring);
@@ -147,6 +149,7 @@ int bench(const GlobalOptions& g, const Options& o) {
           << ", \"ms_narrow_phase_per_pass\": " << r.ms_narrow << ", \"ms_colouring_per_pass\": " << r.ms_colouring
           << ", \"contacts\": " << r.contacts << ", \"max_strain\": " << r.max_strain
           << ", \"p99_strain\": " << r.p99_strain << ", \"intersections\": " << r.intersections
+          << ", \"max_pin_lag\": " << r.pin_lag
           << ", \"queries\": " << r.queries << ", \"early_passes\": " << r.early_passes
           << ", \"points_cut_back\": " << r.cut_back
           << ", \"memory_bytes\": " << r.memory << "}";

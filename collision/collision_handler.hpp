@@ -102,12 +102,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
           edge = std::max(edge, norm(s.points.position[s.triangles[t][(k + 1) % 3]] - s.points.position[s.triangles[t][k]]));
         ceiling[t] = std::max(floor[t], std::min(edge, 2 * floor[t]));
       }
-      std::vector<char> kinematic(s.points.size(), 0);
-      for (int k : s.kinematic_point) kinematic[k] = 1;
-      for (size_t i = 0; i < s.points.size(); ++i)
-        movable_ += s.points.mass[i] > 0 && !(s.points.stopped[i] & 1) && !kinematic[i];
       bounds_.emplace(long(s.points.size()), upload(floor, "weft::bounds_floor"), upload(ceiling, "weft::bounds_ceiling"),
-                      movable_, bound_settings_);
+                      bound_settings_);
     }
     cloth_boxes_ = View<Aabb*>("weft::cloth_boxes", s.triangles.size());
     // Collider side: all colliders' triangles over the concatenated vertices; one thickness and friction
@@ -217,7 +213,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     const long cut = bounds_->cut_count(s.exec) + held_;
     stats_.points_cut_back += cut - held_;
     held_ = 0;
-    if (early_in_substep_ >= max_early_ || !(real(cut) > early_fraction_ * real(movable_))) return false;
+    if (early_in_substep_ >= max_early_ || !(real(cut) > early_fraction_ * real(bounds_->movable()))) return false;
     ++early_in_substep_;
     ++stats_.early_passes;
     return true;
@@ -394,7 +390,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   bool proximity_ = false, build_ = true;
   int passes_ = 1, pass_in_substep_ = 0, early_in_substep_ = 0, max_early_ = 0;
   real early_fraction_ = 0;
-  long movable_ = 0, held_ = 0;  // held_: points the last query's truncation held short of their prediction
+  long held_ = 0;  // points the last query's truncation held short of their prediction
   BoundSettings bound_settings_;
   std::optional<DisplacementBounds<Exec>> bounds_;
   View<Vec3*> x_pass_;  // cloth positions at the previous pass of the substep (ccd_per_pass)

@@ -227,6 +227,12 @@ struct Truncate {
   }
 };
 
+template <class Mem>
+struct CountMovable {
+  Kokkos::View<const real*, Mem> w;
+  KOKKOS_INLINE_FUNCTION void operator()(long i, long& acc) const { acc += w(i) > 0 ? 1 : 0; }
+};
+
 // The points the last truncation cut back (an integer sum: the same on every backend). One counter
 // bumped by every thread instead cost 10 ms a truncation on the H100 where most points were cut back.
 template <class Mem>
@@ -260,15 +266,15 @@ class DisplacementBounds {
 
   // floor(t): triangle t's smallest query margin, the reach an unfound pair must stay beyond; ceiling(t):
   // its largest.
-  DisplacementBounds(long points, const View<real*>& floor, const View<real*>& ceiling, long movable,
-                     const BoundSettings& s)
-      : s_(s), movable_(movable), floor_(floor), ceiling_(ceiling), x0_("weft::bounds_x0", points),
+  DisplacementBounds(long points, const View<real*>& floor, const View<real*>& ceiling, const BoundSettings& s)
+      : s_(s), floor_(floor), ceiling_(ceiling), x0_("weft::bounds_x0", points),
         xrel_("weft::bounds_xrel", points), xb_("weft::bounds_xb", points), bound_("weft::bounds", points),
         want_("weft::bounds_want", points), margin_("weft::bounds_margin", floor.extent(0)),
         scratch_("weft::bounds_scratch", points), dmin_("weft::bounds_dmin", points),
         qmin_("weft::bounds_qmin", points), deficit_("weft::bounds_deficit", points), pending_("weft::bounds_pending", points),
         cut_("weft::bounds_cut", points) {}
 
+  long movable() const { return movable_ > 0 ? movable_ : 0; }  // counted at the first prepare()
   const View<Vec3*>& x0() const { return x0_; }
   const View<Vec3*>& relative_end() const { return xrel_; }  // seen from the translating frame
   const View<Vec3*>& end() const { return xb_; }             // X0 + t, pinned points at their targets
@@ -285,6 +291,9 @@ class DisplacementBounds {
     if (from.data() != x0_.data()) Kokkos::deep_copy(exec, x0_, from);
     const long n = long(x.extent(0));
     resume_ = !first;
+    if (movable_ < 0)  // the points that move (w > 0), counted once from the solver's inverse masses
+      Kokkos::parallel_reduce("weft::bounds_movable", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                              bounds_detail::CountMovable<Mem>{w}, movable_);
     real sum[3] = {0, 0, 0};
     for (int k = 0; k < 3 && movable_ > 0; ++k) {
       Kokkos::parallel_for("weft::bounds_wanted", Kokkos::RangePolicy<Exec>(exec, 0, n),
@@ -340,7 +349,7 @@ class DisplacementBounds {
   }
 
   BoundSettings s_;
-  long movable_;
+  long movable_ = -1;
   View<real*> floor_, ceiling_;
   View<Vec3*> x0_, xrel_, xb_;
   View<real*> bound_, want_, margin_, scratch_;

@@ -9,15 +9,6 @@ namespace {
 using weft::real;
 using weft::Vec3;
 
-template <class T, class Mem>
-Kokkos::View<T*, Mem> device_copy(const std::vector<T>& h, const char* label) {
-  Kokkos::View<T*, Mem> d(std::string(label), h.size());
-  auto m = Kokkos::create_mirror_view(d);
-  for (size_t i = 0; i < h.size(); ++i) m(i) = h[i];
-  Kokkos::deep_copy(d, m);
-  return d;
-}
-
 // Two triangles 1 cm apart, one above the other. Every point's bound is gamma times that gap; moves of
 // 5 cm towards each other are cut back to the bound, and the gap keeps at least (1 - 2 gamma) of itself.
 TEST(WEFT_TEST_SUITE, proximity_bounds_cut_every_move_back_and_keep_pairs_apart) {
@@ -29,15 +20,15 @@ TEST(WEFT_TEST_SUITE, proximity_bounds_cut_every_move_back_and_keep_pairs_apart)
   auto tm = Kokkos::create_mirror_view(tris);
   for (int k = 0; k < 3; ++k) { tm(0, k) = k; tm(1, k) = 3 + k; }
   Kokkos::deep_copy(tris, tm);
-  auto x = device_copy<Vec3, Mem>(x0h, "x");
-  auto w = device_copy<real, Mem>(std::vector<real>(6, 1.0), "w");
-  auto thickness = device_copy<real, Mem>(std::vector<real>(6, th), "th");
-  auto rmask = device_copy<uint8_t, Mem>({0x3F, 0x3F}, "rmask");
-  auto pairs = device_copy<weft::IndexPair, Mem>({{0, 1}}, "pairs");
+  auto x = weft::test::to_device<Exec, Vec3>(x0h, "x");
+  auto w = weft::test::to_device<Exec, real>(std::vector<real>(6, 1.0), "w");
+  auto thickness = weft::test::to_device<Exec, real>(std::vector<real>(6, th), "th");
+  auto rmask = weft::test::to_device<Exec, uint8_t>({0x3F, 0x3F}, "rmask");
+  auto pairs = weft::test::to_device<Exec, weft::IndexPair>({{0, 1}}, "pairs");
   const weft::BoundSettings bs;
   const real floor = 0.02;  // query margin of each triangle: more than the gap, so the gap decides
-  const auto margins = device_copy<real, Mem>({floor, floor}, "floor");
-  weft::DisplacementBounds<Exec> b(6, margins, margins, 6, bs);
+  const auto margins = weft::test::to_device<Exec, real>({floor, floor}, "floor");
+  weft::DisplacementBounds<Exec> b(6, margins, margins, bs);
   b.prepare(Exec(), x, x, w, tris, /*first*/ true);
   weft::SideMesh<Mem> cloth;
   cloth.x = cloth.xs = cloth.xo = b.x0();
@@ -51,7 +42,7 @@ TEST(WEFT_TEST_SUITE, proximity_bounds_cut_every_move_back_and_keep_pairs_apart)
   // Lower triangle moves 5 cm up, upper 5 cm down (and sideways): every move is cut back to its bound.
   std::vector<Vec3> moved = x0h;
   for (int i = 0; i < 6; ++i) moved[i] += i < 3 ? Vec3{0.01, 0.05, 0} : Vec3{-0.02, -0.05, 0.01};
-  Kokkos::deep_copy(x, device_copy<Vec3, Mem>(moved, "moved"));
+  Kokkos::deep_copy(x, weft::test::to_device<Exec, Vec3>(moved, "moved"));
   b.truncate(Exec(), x, w);
   EXPECT_EQ(b.cut_count(Exec()), 6);
   const auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x);
@@ -63,7 +54,7 @@ TEST(WEFT_TEST_SUITE, proximity_bounds_cut_every_move_back_and_keep_pairs_apart)
   }
   EXPECT_GE(bottom - top, (1 - 2 * bs.gamma) * gap * (1 - 1e-9));
   // A move within the bound is left alone.
-  Kokkos::deep_copy(x, device_copy<Vec3, Mem>(x0h, "back"));
+  Kokkos::deep_copy(x, weft::test::to_device<Exec, Vec3>(x0h, "back"));
   b.truncate(Exec(), x, w);
   EXPECT_EQ(b.cut_count(Exec()), 0);
 }
