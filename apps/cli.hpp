@@ -30,6 +30,9 @@ void apply_self_collision(const std::string& value, bool& self_collision);
 // --contact-model proximity|ccd (run, bench): overrides the scene's contact_model when not empty.
 void add_contact_model_option(CLI::App* cmd, std::string& value);
 void apply_contact_model(const std::string& value, ContactModel& model);
+// --pair-refresh on|off (run, bench): overrides the scene's pair_refresh when not empty.
+void add_pair_refresh_option(CLI::App* cmd, std::string& value);
+void apply_pair_refresh(const std::string& value, bool& pair_refresh);
 // --contact-solver gauss-seidel|jacobi (run, bench): overrides the scene's jacobi_contacts when not empty.
 void add_contact_solver_option(CLI::App* cmd, std::string& value);
 void apply_contact_solver(const std::string& value, bool& jacobi_contacts);

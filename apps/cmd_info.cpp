@@ -35,7 +35,7 @@ void print_settings(const SolverSettings& s) {
             << "  contact model " << contact_model_name(s.contact_model);
   if (s.contact_model == ContactModel::Proximity)
     std::cout << " (early passes at " << s.early_pass_fraction << " of the points cut back, at most "
-              << s.max_early_passes << " a substep)";
+              << s.max_early_passes << " a substep; pair refresh " << (s.pair_refresh ? "on" : "off") << ")";
   std::cout << "\n"
             << "  impact zone smoothing " << (s.impact_zone_smoothing ? "on" : "off") << " (epsilon "
             << s.impact_zone_epsilon << ", " << s.impact_zone_sweeps << " sweeps), crossing fail-safe "

@@ -61,6 +61,7 @@ std::string resume_command(const RunOptions& o) {
   if (o.no_failsafe) c += " --no-failsafe";
   opt("--self-collision", o.self_collision);
   opt("--contact-model", o.contact_model);
+  opt("--pair-refresh", o.pair_refresh);
   opt("--contact-solver", o.contact_solver);
   opt("--ccd-span", o.ccd_span);
   opt("--tethers", o.tethers);
@@ -121,7 +122,8 @@ class Progress {
       std::printf("frame %d  ke %.3e J  rms speed %.3e m/s  max strain %.3e  contacts %ld  ", fs.frame,
                   fs.kinetic_energy, fs.rms_speed, fs.max_strain, fs.contacts);
       if (fs.collision_queries > 0)  // proximity contacts
-        std::printf("queries %ld (%ld early)  cut back %ld", fs.collision_queries, fs.early_passes, fs.points_cut_back);
+        std::printf("passes %ld (%ld early, %ld full queries)  cut back %ld", fs.collision_passes, fs.early_passes,
+                    fs.collision_queries, fs.points_cut_back);
       else
         std::printf("moved back %ld (%ld pinned, %ld fail-safe rounds)", fs.failsafe_points, fs.failsafe_pinned,
                     fs.failsafe_rounds);
@@ -166,6 +168,7 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   if (o.no_failsafe) st.collision_failsafe = false;
   apply_self_collision(o.self_collision, st.self_collision);
   apply_contact_model(o.contact_model, st.contact_model);
+  apply_pair_refresh(o.pair_refresh, st.pair_refresh);
   apply_contact_solver(o.contact_solver, st.jacobi_contacts);
   apply_ccd_span(o.ccd_span, st.ccd_per_pass);
   apply_tethers(o.tethers, st.tether_stretch);
@@ -271,6 +274,7 @@ void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_flag("--no-failsafe", o->no_failsafe, "switch off the crossing fail-safe (docs/collisions.md)");
   add_self_collision_option(cmd, o->self_collision);
   add_contact_model_option(cmd, o->contact_model);
+  add_pair_refresh_option(cmd, o->pair_refresh);
   add_contact_solver_option(cmd, o->contact_solver);
   add_ccd_span_option(cmd, o->ccd_span);
   add_tethers_option(cmd, o->tethers);

@@ -46,6 +46,17 @@ void apply_contact_model(const std::string& value, ContactModel& model) {
   if (!value.empty()) model = *parse_contact_model(value);
 }
 
+void add_pair_refresh_option(CLI::App* cmd, std::string& value) {
+  cmd->add_option("--pair-refresh", value,
+                  "on | off: proximity passes keep the last full query's self pairs while the points have moved "
+                  "little, measuring them again without a tree traversal (default: the scene's)")
+      ->check(CLI::IsMember({"on", "off"}));
+}
+
+void apply_pair_refresh(const std::string& value, bool& pair_refresh) {
+  if (!value.empty()) pair_refresh = value == "on";
+}
+
 void add_contact_solver_option(CLI::App* cmd, std::string& value) {
   cmd->add_option("--contact-solver", value,
                   "gauss-seidel (by colours) | jacobi (averaged, two launches an iteration): how the ccd model "

@@ -15,6 +15,7 @@ struct RunOptions {
   bool no_impact_zones = false, no_failsafe = false;  // switch off impact-zone smoothing, the crossing fail-safe
   std::string self_collision;  // "on" | "off" | "" (the scene's setting)
   std::string contact_model;   // "proximity" | "ccd" | "" (the scene's setting)
+  std::string pair_refresh;    // "on" | "off" | "" (the scene's setting)
   std::string contact_solver;  // "gauss-seidel" | "jacobi" | "" (the scene's setting)
   std::string ccd_span;        // "substep" | "pass" | "" (the scene's setting)
   std::string tethers;         // tether stretch, "" (the scene's setting)

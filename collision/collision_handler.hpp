@@ -49,7 +49,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
     long failsafe_points = 0;  // moved back by the fail-safe since the handler was made
     long failsafe_rounds = 0;  // its rounds since the handler was made
     long failsafe_pinned = 0;  // pinned points among failsafe_points
-    long queries = 0;          // proximity: full pair queries since the handler was made
+    long queries = 0;          // proximity: full pair queries since the handler was made (the other passes
+                               // kept the last one's self pairs)
     long early_passes = 0;     // proximity: of them, run early because points were cut back
     long points_cut_back = 0;  // proximity: points cut back to their bounds, summed over every truncation
     // With profile (fenced), since the handler was made: FrameStats' collision stage times.
@@ -75,6 +76,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     proximity_ = st.contact_model == ContactModel::Proximity;
     early_fraction_ = st.early_pass_fraction;
     max_early_ = st.max_early_passes;
+    refresh_ = st.pair_refresh;
     // Cloth side.
     cloth_tris_ = upload_tris(s.triangles);
     cloth_rmask_ = upload(representative_features(s.triangles, int(s.points.size())), "weft::cloth_rmask");
@@ -216,6 +218,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     if (early_in_substep_ >= max_early_ || !(real(cut) > early_fraction_ * real(bounds_->movable()))) return false;
     ++early_in_substep_;
     ++stats_.early_passes;
+    early_next_ = true;
     return true;
   }
 
@@ -231,17 +234,30 @@ class CollisionHandler final : public CollisionStage<Exec> {
   // colliders' swept over the whole substep in every query, whose narrow phase then also catches, by CCD,
   // a collider face that has swept over a point this substep, or a point carried through a face: such a
   // contact is found again at each query until the point is out. Bounds from every candidate pair.
+  //
+  // With pair_refresh, a scheduled pass after the frame's first keeps the self pairs of the last full query
+  // while few points have spent half of what that query allows them (DisplacementBounds::spent): it measures
+  // their distances and contacts again at X0, with no tree refit or traversal, and the bounds spend what
+  // the points moved since. Collider pairs are queried at every pass (the colliders move within it).
   void proximity_pass(const SolverState<Exec>& s) {
     const bool first = pass_in_substep_++ == 0;
     DisplacementBounds<Exec>& b = *bounds_;
     SideMesh<Mem> cloth = cloth_side(s), collider = collider_side(s);
     const bool colliders = collider_boxes_.extent(0) > 0;
+    const View<Vec3*> from = first ? s.x_start : s.x;
+    bool refresh = false;
     timed(stats_.seconds_broad_phase, [&] {
-      b.prepare(s.exec, first ? s.x_start : s.x, s.x, s.w, cloth_tris_, first);
+      // An early pass runs because points were cut back: it queries afresh, which resets what they spent
+      // and widens the margins where they want to move.
+      refresh = refresh_ && self_ && !build_ && !early_next_ &&
+                !(real(b.spent(s.exec, from, s.w)) > early_fraction_ * real(b.movable()));
+      early_next_ = false;
+      b.prepare(s.exec, from, s.x, s.w, cloth_tris_, first, refresh);
       cloth.x = cloth.xs = cloth.xo = b.x0();
       const View<const real*> margins = b.margins();
-      swept_triangle_boxes(s.exec, View<const Vec3*>(b.x0()), View<const Vec3*>(b.relative_end()),
-                           View<const int* [3]>(cloth_tris_), margins, cloth_boxes_);
+      if (!refresh)
+        swept_triangle_boxes(s.exec, View<const Vec3*>(b.x0()), View<const Vec3*>(b.relative_end()),
+                             View<const int* [3]>(cloth_tris_), margins, cloth_boxes_);
       if (colliders) {
         if (swept_boxes_.extent(0) != cloth_boxes_.extent(0))
           swept_boxes_ = View<Aabb*>("weft::cloth_swept_boxes", cloth_boxes_.extent(0));
@@ -255,7 +271,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
         if (colliders) collider_bvh_.build(collider_boxes_);
         build_ = false;
       } else {
-        cloth_bvh_.refit(cloth_boxes_);
+        if (!refresh) cloth_bvh_.refit(cloth_boxes_);
         if (colliders) collider_bvh_.refit(collider_boxes_);
       }
     });
@@ -263,11 +279,13 @@ class CollisionHandler final : public CollisionStage<Exec> {
     if (self_) {
       NarrowSettings ns = ns_;
       ns.self = true;
-      long npairs = 0;
-      timed(stats_.seconds_broad_phase, [&] { npairs = cloth_bvh_.query_self(KeepAllPairs{}, pairs_); });
+      if (!refresh) timed(stats_.seconds_broad_phase, [&] { nself_pairs_ = cloth_bvh_.query_self(KeepAllPairs{}, pairs_); });
       timed(stats_.seconds_narrow_phase, [&] {
-        b.add_pairs(s.exec, cloth, cloth, pairs_, npairs, b.relative_end(), s.w);
-        if (npairs > 0) n += narrow_pairs(cloth, cloth, ns, npairs, n);
+        // The cloth stands still at X0: the bounds' distances decide its contacts too.
+        const long np = nself_pairs_;
+        lbvh_detail::reserve(self_hits_, np, "weft::self_hits");
+        b.add_pairs(s.exec, cloth, cloth, pairs_, np, b.relative_end(), s.w, self_hits_, ns);
+        if (np > 0) n += narrow_.fill(s.exec, cloth, cloth, ns, pairs_, np, self_hits_, contacts_, n);
       });
     }
     if (colliders) {
@@ -277,13 +295,13 @@ class CollisionHandler final : public CollisionStage<Exec> {
       moving.x = b.end();
       long npairs = 0;
       timed(stats_.seconds_broad_phase, [&] {
-        npairs = collider_bvh_.query(View<const Aabb*>(swept_boxes_), KeepAllPairs{}, pairs_);
+        npairs = collider_bvh_.query(View<const Aabb*>(swept_boxes_), KeepAllPairs{}, collider_pairs_);
       });
       timed(stats_.seconds_narrow_phase, [&] {
         SideMesh<Mem> there = cloth;
         there.x = there.xs = b.end();
-        b.add_pairs(s.exec, there, collider, pairs_, npairs, b.end(), s.w);
-        if (npairs > 0) n += narrow_pairs(moving, collider, ns, npairs, n);
+        b.add_pairs(s.exec, there, collider, collider_pairs_, npairs, b.end(), s.w);
+        if (npairs > 0) n += narrow_.run(Exec(), moving, collider, ns, collider_pairs_, npairs, contacts_, n);
       });
     }
     timed(stats_.seconds_narrow_phase, [&] {
@@ -298,7 +316,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     offsets_ = {0};
     stats_.contacts = n;
     stats_.colours = 0;
-    ++stats_.queries;
+    if (!refresh) ++stats_.queries;
   }
 
   // Narrow phase of the pairs between sides A and B, contacts appended at `first`; returns how many.
@@ -391,6 +409,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
   int passes_ = 1, pass_in_substep_ = 0, early_in_substep_ = 0, max_early_ = 0;
   real early_fraction_ = 0;
   long held_ = 0;  // points the last query's truncation held short of their prediction
+  long nself_pairs_ = 0;  // proximity: self pairs of the last full query (in pairs_)
+  bool refresh_ = true;   // proximity: passes may keep the last full query's self pairs
+  bool early_next_ = false;  // proximity: wants_pass asked for the next pass
   BoundSettings bound_settings_;
   std::optional<DisplacementBounds<Exec>> bounds_;
   View<Vec3*> x_pass_;  // cloth positions at the previous pass of the substep (ccd_per_pass)
@@ -405,6 +426,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   View<Aabb*> cloth_boxes_, collider_boxes_, swept_boxes_;  // swept_boxes_: proximity queries against colliders
   Lbvh<Exec> cloth_bvh_, collider_bvh_;
   View<IndexPair*> pairs_{"weft::pairs", 0}, collider_pairs_{"weft::collider_pairs", 0};
+  View<uint32_t*> self_hits_;  // proximity: per self pair, its contact bits
   View<Contact*> contacts_{"weft::contacts", 0};
   std::vector<long> offsets_{0};
   NarrowPipeline<Exec> narrow_;

@@ -12,9 +12,11 @@
 #include "collision/ccd_proximity.hpp"
 #include "collision/lbvh.hpp"  // IndexPair
 #include "collision/narrow_phase.hpp"
+#include "collision/pair_cull.hpp"
 #include "core/reduce.hpp"
 
 #include <Kokkos_Core.hpp>
+#include <limits>
 
 namespace weft {
 
@@ -57,7 +59,7 @@ struct PreparePoints {
   Kokkos::View<Vec3*, Mem> xrel, xb;
   Kokkos::View<Fixed*, Mem> dmin, qmin;
   Vec3 t;
-  bool resume, pins;
+  bool resume, pins, refresh;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const bool free = pins || w(i) > 0;
     const Vec3 target = !resume ? x(i) : w(i) > 0 ? x(i) + deficit(i) : pending(i) ? deficit(i) : x(i);
@@ -65,7 +67,7 @@ struct PreparePoints {
     xrel(i) = free ? x0(i) : x(i) - t;
     xb(i) = free ? x0(i) + t : x(i);
     dmin(i) = kFar;
-    qmin(i) = kFar;
+    if (!refresh) qmin(i) = kFar;  // a refresh keeps the last full query's margins
   }
 };
 
@@ -98,6 +100,11 @@ struct TriangleMargins {
 // corner moves to its target whatever the bounds say, so its move is taken off the pair's distance first.
 // Collider pairs count only while farther than contact reach: a point in contact with a collider is held
 // on its side by the contact, and must stay free to be pushed out.
+//
+// With `hits` (self pairs, where the cloth stands still at X0), the same distances also decide the pair's
+// contacts, as the narrow phase's bits (collision/narrow_phase.hpp): vf_test and ee_test on a pair that
+// does not move, whose CCD could only report a pair already touching. One pass over the pairs then gives
+// the bounds and the contacts, where the narrow phase measured every feature pair again (twice).
 template <class Mem>
 struct PairDistances {
   // Self pairs: A and B the cloth at X0, and `xend` where its points go seen from the translating frame
@@ -110,8 +117,10 @@ struct PairDistances {
   Kokkos::View<const real*, Mem> margin;
   Kokkos::View<Fixed*, Mem> dmin;
   real detect_scale;
+  bool pins;                           // pinned points are bounded too
+  Kokkos::View<uint32_t*, Mem> hits;  // empty, or per pair its contact bits
+  NarrowSettings ns;
 
-  bool pins;  // pinned points are bounded too
   KOKKOS_INLINE_FUNCTION real pinned_move(const SideMesh<Mem>& S, int v) const {
     return S.collider || pins || w(v) > 0 ? real(0) : norm(xend(v) - S.x(v));
   }
@@ -135,52 +144,105 @@ struct PairDistances {
   KOKKOS_INLINE_FUNCTION real margin_of(const SideMesh<Mem>& S, int t) const {
     return S.collider ? detect_scale * S.uniform_thickness : margin(t);
   }
-  // Vertex k of triangle TP on side P against triangle TF on side F.
-  KOKKOS_INLINE_FUNCTION void vertex_face(const SideMesh<Mem>& P, int TP, int k, const SideMesh<Mem>& F, int TF,
+  // A static pair's CCD with separation 0 (narrow_detail::touching) can only find features already touching.
+  KOKKOS_INLINE_FUNCTION static bool touches(real d) { return !(d > real(1e-9) * (1 + d)); }
+  // Vertex k of triangle TP on side P against triangle TF on side F; whether it is a contact.
+  KOKKOS_INLINE_FUNCTION bool vertex_face(const SideMesh<Mem>& P, int TP, int k, const SideMesh<Mem>& F, int TF,
                                           real reach) const {
     const int p = P.tris(TP, k), f[3] = {F.tris(TF, 0), F.tris(TF, 1), F.tris(TF, 2)};
-    if (!P.collider && !F.collider && (p == f[0] || p == f[1] || p == f[2])) return;
+    if (!P.collider && !F.collider && (p == f[0] || p == f[1] || p == f[2])) return false;
     real u, v, s;
-    const real d = sqrt_(point_triangle_distance2(P.x(p), F.x(f[0]), F.x(f[1]), F.x(f[2]), u, v, s));
+    const real d2 = point_triangle_distance2(P.x(p), F.x(f[0]), F.x(f[1]), F.x(f[2]), u, v, s);
+    const real d = sqrt_(d2);
     const int pp[1] = {p};
-    record(P, pp, F, f, d, reach, detect_scale * (P.th(p) + narrow_detail::face_th(F, TF)));
+    const real r = P.th(p) + narrow_detail::face_th(F, TF);
+    record(P, pp, F, f, d, reach, detect_scale * r);
+    const real lim = ns.detect_scale * r;
+    return (d2 < lim * lim && narrow_detail::owns_closest_feature(F, TF, u, v, s)) || touches(d);
   }
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const int ta = pairs(i).first, tb = pairs(i).second;
     const real reach = margin_of(A, ta) + margin_of(B, tb);
+    const bool contacts = hits.extent(0) > 0;
+    const int ia[3] = {A.tris(ta, 0), A.tris(ta, 1), A.tris(ta, 2)}, ib[3] = {B.tris(tb, 0), B.tris(tb, 1), B.tris(tb, 2)};
+    // Triangles apart by more than the reach along either normal have no feature pair within it (the reach
+    // is wider than any contact's).
+    if (pair_cull_detail::swept_apart(A, ia, B, ib, reach)) {
+      if (contacts) hits(i) = 0;
+      return;
+    }
+    uint32_t hit = 0;
     const uint8_t ra = A.rmask(ta), rb = B.rmask(tb);
     for (int k = 0; k < 3; ++k) {
-      if ((ra >> k) & 1) vertex_face(A, ta, k, B, tb, reach);
-      if ((rb >> k) & 1) vertex_face(B, tb, k, A, ta, reach);
+      if (((ra >> k) & 1) && vertex_face(A, ta, k, B, tb, reach)) hit |= 1u << k;
+      if (((rb >> k) & 1) && vertex_face(B, tb, k, A, ta, reach)) hit |= 1u << (3 + k);
     }
     for (int ka = 0; ka < 3; ++ka) {
       if (!((ra >> (3 + ka)) & 1)) continue;
-      const int ea[2] = {A.tris(ta, ka), A.tris(ta, (ka + 1) % 3)};
+      const int ea[2] = {ia[ka], ia[(ka + 1) % 3]};
       for (int kb = 0; kb < 3; ++kb) {
         if (!((rb >> (3 + kb)) & 1)) continue;
-        const int eb[2] = {B.tris(tb, kb), B.tris(tb, (kb + 1) % 3)};
+        const int eb[2] = {ib[kb], ib[(kb + 1) % 3]};
         if (!B.collider && narrow_detail::shares(ea[0], ea[1], eb[0], eb[1])) continue;
         real s, t;
-        const real d = sqrt_(segment_segment_distance2(A.x(ea[0]), A.x(ea[1]), B.x(eb[0]), B.x(eb[1]), s, t));
+        const real d2 = segment_segment_distance2(A.x(ea[0]), A.x(ea[1]), B.x(eb[0]), B.x(eb[1]), s, t);
+        const real d = sqrt_(d2);
         const real th = max_(A.th(ea[0]), A.th(ea[1])) + max_(B.th(eb[0]), B.th(eb[1]));
         record(A, ea, B, eb, d, reach, detect_scale * th);
+        if (!contacts) continue;
+        const real lim = ns.ee_detect_scale * th;
+        const bool crossing_ok = !ns.self || narrow_detail::not_parallel(A.x(ea[1]) - A.x(ea[0]), B.x(eb[1]) - B.x(eb[0]),
+                                                                          ns.min_sin_angle);
+        if (crossing_ok && (d2 < lim * lim || touches(d))) hit |= 1u << (6 + 3 * ka + kb);
       }
     }
+    if (contacts) hits(i) = hit;
   }
 };
 
-// Per point: b = gamma min(d, Q) for points that move; the wanted move starts again from 0.
+// Per point: b = gamma min(d, Q) for points that move; the wanted move starts again from 0. On a refresh
+// (pairs kept from the last full query, at xq), the point's move since then beside the translations since
+// then (tq) is spent from gamma Q: however many refreshes follow, a point stays within gamma Q of where the
+// full query saw it, so a pair that query did not find still keeps its (1 - gamma)(m_A + m_B).
 template <class Mem>
 struct FinishBounds {
   Kokkos::View<const real*, Mem> w;
   Kokkos::View<const Fixed*, Mem> dmin, qmin;
   Kokkos::View<real*, Mem> bound, want;
+  Kokkos::View<const Vec3*, Mem> x0, xq;
+  Vec3 tq;
+  real gamma;
+  bool pins, refresh;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    if (!(pins || w(i) > 0)) {
+      bound(i) = from_fixed(kFar);
+      if (!refresh) want(i) = 0;
+      return;
+    }
+    if (!refresh) {
+      const Fixed f = dmin(i) < qmin(i) ? dmin(i) : qmin(i);
+      bound(i) = gamma * from_fixed(f);
+      want(i) = 0;
+      return;
+    }
+    const real left = gamma * from_fixed(qmin(i)) - norm(x0(i) - xq(i) - tq);
+    bound(i) = max_(real(0), min_(gamma * from_fixed(dmin(i)), left));
+  }
+};
+
+// Per point (that moves): whether it has spent more than half of what a refresh would leave it (gamma Q
+// since the last full query).
+template <class Mem>
+struct MarkSpent {
+  Kokkos::View<const Vec3*, Mem> x, xq;
+  Kokkos::View<const real*, Mem> w;
+  Kokkos::View<const Fixed*, Mem> qmin;
+  Kokkos::View<int*, Mem> flag;
+  Vec3 tq;
   real gamma;
   bool pins;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
-    const Fixed f = dmin(i) < qmin(i) ? dmin(i) : qmin(i);
-    bound(i) = pins || w(i) > 0 ? gamma * from_fixed(f) : from_fixed(kFar);
-    want(i) = 0;
+    flag(i) = (pins || w(i) > 0) && norm(x(i) - xq(i) - tq) > real(0.5) * gamma * from_fixed(qmin(i)) ? 1 : 0;
   }
 };
 
@@ -228,17 +290,10 @@ struct Truncate {
 };
 
 template <class Mem>
-struct CountMovable {
+struct MarkMovable {
   Kokkos::View<const real*, Mem> w;
-  KOKKOS_INLINE_FUNCTION void operator()(long i, long& acc) const { acc += w(i) > 0 ? 1 : 0; }
-};
-
-// The points the last truncation cut back (an integer sum: the same on every backend). One counter
-// bumped by every thread instead cost 10 ms a truncation on the H100 where most points were cut back.
-template <class Mem>
-struct CountCut {
-  Kokkos::View<const int*, Mem> cut;
-  KOKKOS_INLINE_FUNCTION void operator()(long i, long& acc) const { acc += cut(i); }
+  Kokkos::View<int*, Mem> flag;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const { flag(i) = w(i) > 0 ? 1 : 0; }
 };
 
 }  // namespace bounds_detail
@@ -272,7 +327,7 @@ class DisplacementBounds {
         want_("weft::bounds_want", points), margin_("weft::bounds_margin", floor.extent(0)),
         scratch_("weft::bounds_scratch", points), dmin_("weft::bounds_dmin", points),
         qmin_("weft::bounds_qmin", points), deficit_("weft::bounds_deficit", points), pending_("weft::bounds_pending", points),
-        cut_("weft::bounds_cut", points) {}
+        cut_("weft::bounds_cut", points), flag_("weft::bounds_flag", points), xq_("weft::bounds_xq", points) {}
 
   long movable() const { return movable_ > 0 ? movable_ : 0; }  // counted at the first prepare()
   const View<Vec3*>& x0() const { return x0_; }
@@ -282,18 +337,31 @@ class DisplacementBounds {
   const View<real*>& bounds() const { return bound_; }
   Vec3 translation() const { return t_; }
 
+  // How many of the points that move have spent more than half of what a refresh at positions x would
+  // leave them; more than all of them before the first full query. Reads one sum back.
+  long spent(const Exec& exec, const View<Vec3*>& x, const View<real*>& w) const {
+    if (!queried_) return std::numeric_limits<long>::max();
+    Kokkos::parallel_for("weft::bounds_spent", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
+                         bounds_detail::MarkSpent<Mem>{x, xq_, w, qmin_, flag_, tq_, s_.gamma, s_.bound_pins});
+    return sum_counts(exec, flag_);
+  }
+
   // A new query from positions `from` (X0) while the cloth is at x; `first`: the substep's first query
-  // (the prediction is what the points want), else they want the deficit the last query left. Reads
-  // three sums back.
+  // (the prediction is what the points want), else they want the deficit the last query left. A full
+  // query sets the triangles' margins; a `refresh` keeps them, and the pairs (the caller's), from the last
+  // full one. Reads three sums back.
   void prepare(const Exec& exec, const View<Vec3*>& from, const View<Vec3*>& x, const View<real*>& w,
-               const View<int* [3]>& tris, bool first) {
+               const View<int* [3]>& tris, bool first, bool refresh = false) {
     using namespace bounds_detail;
     if (from.data() != x0_.data()) Kokkos::deep_copy(exec, x0_, from);
     const long n = long(x.extent(0));
     resume_ = !first;
-    if (movable_ < 0)  // the points that move (w > 0), counted once from the solver's inverse masses
-      Kokkos::parallel_reduce("weft::bounds_movable", Kokkos::RangePolicy<Exec>(exec, 0, n),
-                              bounds_detail::CountMovable<Mem>{w}, movable_);
+    refresh_ = refresh && queried_ && s_.bound_pins;  // unbounded pins sweep their boxes to their targets
+    if (movable_ < 0) {  // the points that move (w > 0), counted once from the solver's inverse masses
+      Kokkos::parallel_for("weft::bounds_movable", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                           bounds_detail::MarkMovable<Mem>{w, flag_});
+      movable_ = sum_counts(exec, flag_);
+    }
     real sum[3] = {0, 0, 0};
     for (int k = 0; k < 3 && movable_ > 0; ++k) {
       Kokkos::parallel_for("weft::bounds_wanted", Kokkos::RangePolicy<Exec>(exec, 0, n),
@@ -303,24 +371,32 @@ class DisplacementBounds {
     t_ = movable_ > 0 ? Vec3{sum[0], sum[1], sum[2]} / real(movable_) : Vec3{0, 0, 0};
     Kokkos::parallel_for("weft::bounds_prepare", Kokkos::RangePolicy<Exec>(exec, 0, n),
                          PreparePoints<Mem>{x, x0_, deficit_, pending_, w, want_, xrel_, xb_, dmin_, qmin_, t_,
-                                            resume_, s_.bound_pins});
+                                            resume_, s_.bound_pins, refresh_});
+    if (refresh_) return;
     Kokkos::parallel_for("weft::bounds_margins", Kokkos::RangePolicy<Exec>(exec, 0, tris.extent(0)),
                          TriangleMargins<Mem>{tris, floor_, ceiling_, want_, margin_, qmin_, s_.gamma});
+    Kokkos::deep_copy(exec, xq_, x0_);
+    tq_ = Vec3{0, 0, 0};
+    queried_ = true;
   }
 
   // The feature pairs of candidate triangle pairs [0, n) between the cloth (A) and side B; xend as
   // PairDistances says.
+  // With `hits` (self pairs, A and B the cloth standing at X0), also each pair's contact bits under `ns`.
   void add_pairs(const Exec& exec, const SideMesh<Mem>& A, const SideMesh<Mem>& B, const View<IndexPair*>& pairs,
-                 long n, const View<Vec3*>& xend, const View<real*>& w) {
+                 long n, const View<Vec3*>& xend, const View<real*>& w, const View<uint32_t*>& hits = {},
+                 const NarrowSettings& ns = {}) {
     if (n == 0) return;
     Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n),
                          bounds_detail::PairDistances<Mem>{A, B, pairs, xend, w, margin_, dmin_, s_.detect_scale,
-                                                           s_.bound_pins});
+                                                           s_.bound_pins, hits, ns});
   }
 
   void finish(const Exec& exec, const View<real*>& w) {
     Kokkos::parallel_for("weft::bounds_finish", Kokkos::RangePolicy<Exec>(exec, 0, bound_.extent(0)),
-                         bounds_detail::FinishBounds<Mem>{w, dmin_, qmin_, bound_, want_, s_.gamma, s_.bound_pins});
+                         bounds_detail::FinishBounds<Mem>{w, dmin_, qmin_, bound_, want_, x0_, xq_, tq_, s_.gamma,
+                                                          s_.bound_pins, refresh_});
+    tq_ = tq_ + t_;
   }
 
   // Cuts every point back to its bound around X0 + t, marking the points cut back.
@@ -333,13 +409,9 @@ class DisplacementBounds {
     run_truncate(exec, x, w, true, resume_);
   }
 
-  // Points the last truncation cut back (reads one sum back).
-  long cut_count(const Exec& exec) const {
-    long h = 0;
-    Kokkos::parallel_reduce("weft::bounds_count_cut", Kokkos::RangePolicy<Exec>(exec, 0, cut_.extent(0)),
-                            bounds_detail::CountCut<Mem>{cut_}, h);
-    return h;
-  }
+  // Points the last truncation cut back (an integer sum, read back). One counter bumped by every thread
+  // instead cost 10 ms a truncation on the H100 where most points were cut back.
+  long cut_count(const Exec& exec) const { return sum_counts(exec, cut_); }
 
  private:
   void run_truncate(const Exec& exec, const View<Vec3*>& x, const View<real*>& w, bool carry, bool resume) {
@@ -356,9 +428,10 @@ class DisplacementBounds {
   View<bounds_detail::Fixed*> dmin_, qmin_;
   View<Vec3*> deficit_;  // per point, the prediction's motion still to hand on (pinned: its target)
   View<int*> pending_;   // pinned points short of their target
-  View<int*> cut_;
-  Vec3 t_{0, 0, 0};
-  bool resume_ = false;
+  View<int*> cut_, flag_;  // flag_: per point, for counts
+  View<Vec3*> xq_;        // X0 of the last full query
+  Vec3 t_{0, 0, 0}, tq_{0, 0, 0};  // this query's translation; the sum of those since the last full query
+  bool resume_ = false, refresh_ = false, queried_ = false;
 };
 
 }  // namespace weft

@@ -115,8 +115,19 @@ class NarrowPipeline {
     if (njobs > 0)
       Kokkos::parallel_for("weft::narrow_ccd", Kokkos::RangePolicy<Exec>(exec, 0, njobs),
                            RunCcdJobs<Mem>{A, B, pairs, jobs, masks_, ns});
+    return fill(exec, A, B, ns, pairs, n, masks_, contacts, first);
+  }
+
+ public:
+  // The contacts of pairs[0, n) whose bits `masks` holds (bits as in collision/narrow_phase.hpp), written
+  // in pair order to contacts[first...] (grown as needed); returns how many. Reads one counter back.
+  long fill(const Exec& exec, const SideMesh<Mem>& A, const SideMesh<Mem>& B, const NarrowSettings& ns,
+            const Kokkos::View<const IndexPair*, Mem>& pairs, long n, const Kokkos::View<uint32_t*, Mem>& masks,
+            Kokkos::View<Contact*, Mem>& contacts, long first) {
+    using namespace narrow_detail;
     MaskJobs<Mem> slots;
-    const long total = count_mask_jobs(exec, masks_, n, kFeatureBits, offsets_, slots);
+    const long total = count_mask_jobs(exec, masks, n, kFeatureBits, offsets_, slots);
+    if (total == 0) return 0;
     if (long(contacts.extent(0)) < first + total) {
       Kokkos::View<Contact*, Mem> bigger(Kokkos::view_alloc(Kokkos::WithoutInitializing, contacts.label()),
                                          (first + total) * 3 / 2 + 64);
@@ -125,9 +136,12 @@ class NarrowPipeline {
                           Kokkos::subview(contacts, std::make_pair(0L, first)));
       contacts = bigger;
     }
-    Kokkos::parallel_for("weft::narrow_fill", range, FillContacts<Mem>{A, B, pairs, slots, ns, contacts, first});
+    Kokkos::parallel_for("weft::narrow_fill", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                         FillContacts<Mem>{A, B, pairs, slots, ns, contacts, first});
     return total;
   }
+
+ private:
 
   // Grown with slack up to one chunk, never shrunk.
   template <class V>

@@ -18,15 +18,16 @@ struct FrameStats {
   long failsafe_points = 0;     // points the crossing fail-safe moved back, over the frame's substeps
   long failsafe_rounds = 0;     // its rounds (each a pass over the candidate pairs), over the frame's substeps
   long failsafe_pinned = 0;     // of failsafe_points, pinned points held back (they trail their animation)
-  long collision_queries = 0;   // proximity contacts: full pair queries over the frame (scheduled and early)
-  long early_passes = 0;        // of them, run early because many points were cut back to their bounds
+  long collision_queries = 0;   // proximity contacts: passes that queried pairs afresh (the others kept the
+                                // last query's self pairs: SolverSettings::pair_refresh)
+  long early_passes = 0;        // passes run early because many points were cut back to their bounds
   long points_cut_back = 0;     // points cut back to their displacement bounds, summed over the truncations
   real max_pin_lag = 0;         // m, largest distance of a pinned point from its animated target
   double seconds = 0;       // wall time of the frame
   // With SolverSettings::profile (a fence after each stage, so a little slower): wall time per stage.
   double seconds_constraints = 0, seconds_collision_passes = 0, seconds_contacts = 0, seconds_smoothing = 0,
          seconds_failsafe = 0;
-  long collision_passes = 0;
+  long collision_passes = 0;    // scheduled and early
   // Inside the collision stage (with profile): the trees' build at each substep's start, and the parts of
   // the collision passes (refit and queries, narrow phase with CCD, contact colouring).
   double seconds_lbvh_build = 0, seconds_broad_phase = 0, seconds_narrow_phase = 0, seconds_contact_colouring = 0;

@@ -95,6 +95,46 @@ template <class Exec, class XView> real sum_fixed(const Exec& e, const XView& x)
 template <class Exec, class XView> real min_fixed(const Exec& e, const XView& x) { return reduce_fixed(e, x, MinOp{}); }
 template <class Exec, class XView> real max_fixed(const Exec& e, const XView& x) { return reduce_fixed(e, x, MaxOp{}); }
 
+// Integer counts by the same tree (exact in any order): kept off Kokkos' reductions, whose shared-memory
+// warp code compute-sanitizer's racecheck reports as hazards on the H100.
+template <class In, class Partial>
+struct SumCountBlocks {
+  In in;
+  Partial partial;
+  long len;
+  KOKKOS_INLINE_FUNCTION void operator()(long b) const {
+    const long lo = b * kReduceBlock, hi = lo + kReduceBlock < len ? lo + kReduceBlock : len;
+    long acc = 0;
+    for (long i = lo; i < hi; ++i) acc += long(in(i));
+    partial(b) = acc;
+  }
+};
+
+// The sum of the integers x[0..n) on the host (one small copy).
+template <class Exec, class XView>
+long sum_counts(const Exec& exec, const XView& x) {
+  using Mem = typename Exec::memory_space;
+  using Partial = Kokkos::View<long*, Mem>;
+  long len = static_cast<long>(x.extent(0));
+  if (len == 0) return 0;
+  long nb = (len + kReduceBlock - 1) / kReduceBlock;
+  Partial partial(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::count_partial"), nb);
+  Kokkos::parallel_for("weft::count_blocks", Kokkos::RangePolicy<Exec>(exec, 0, nb),
+                       SumCountBlocks<XView, Partial>{x, partial, len});
+  while (nb > 1) {
+    len = nb;
+    nb = (len + kReduceBlock - 1) / kReduceBlock;
+    Partial next(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::count_partial"), nb);
+    Kokkos::parallel_for("weft::count_blocks", Kokkos::RangePolicy<Exec>(exec, 0, nb),
+                         SumCountBlocks<Partial, Partial>{partial, next, len});
+    partial = next;
+  }
+  long h = 0;
+  Kokkos::deep_copy(exec, h, Kokkos::subview(partial, 0));
+  exec.fence();
+  return h;
+}
+
 // The same tree on the host, for tests and host-side statistics.
 template <class Op>
 real reduce_fixed_host(std::vector<real> v, Op op = Op{}) {

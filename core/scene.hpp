@@ -46,6 +46,7 @@ struct SolverSettings {
   ContactModel contact_model = ContactModel::Proximity;
   real early_pass_fraction = 0.01;       // proximity: a pass runs early when more of the moving points were cut back
   int max_early_passes = 4;              // proximity: early passes per substep at most
+  bool pair_refresh = true;              // proximity: a pass may keep the last full query's self pairs
   bool collision_failsafe = true;        // ccd model: move back points whose motion would cross cloth (collision/crossing_failsafe.hpp)
   bool jacobi_contacts = false;          // contacts projected Jacobi-style (averaged) instead of by colours
   bool ccd_per_pass = true;              // a later collision pass tests only the motion since the previous pass

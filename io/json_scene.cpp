@@ -151,7 +151,8 @@ std::string resolve(const std::string& json_path, const std::string& file) {
 
 void read_settings(const Node& n, Scene& s) {
   n.object({"fps", "frames", "substeps", "iterations", "collision_passes", "smoothing", "gravity", "wind", "damping",
-            "impact_zone_smoothing", "collision_failsafe", "contact_solver", "ccd_span", "tethers", "collisions"});
+            "impact_zone_smoothing", "collision_failsafe", "contact_solver", "ccd_span", "tethers", "collisions",
+            "contact_model", "early_pass_fraction", "max_early_passes", "pair_refresh"});
   SolverSettings& st = s.settings;
   st.fps = n.number("fps", st.fps, Range::Positive);
   if (n.has("frames")) {
@@ -182,6 +183,7 @@ void read_settings(const Node& n, Scene& s) {
   }
   st.early_pass_fraction = n.number("early_pass_fraction", st.early_pass_fraction, Range::NonNegative);
   st.max_early_passes = n.integer("max_early_passes", st.max_early_passes, 0);
+  if (n.has("pair_refresh")) st.pair_refresh = n["pair_refresh"].boolean();
   if (n.has("ccd_span")) {
     const std::string v = n["ccd_span"].string();
     if (v != "substep" && v != "pass") n["ccd_span"].fail("expected \"substep\" or \"pass\"");

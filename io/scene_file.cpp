@@ -11,7 +11,7 @@ namespace {
 // A field added to these structs must be added to the file (and the format version raised): the sizes are
 // checked so that the scene file does not silently drop it (a field that fits in padding escapes the check).
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is stored as 3 doubles");
-static_assert(sizeof(SolverSettings) == 176, "SolverSettings changed: update the settings tables below");
+static_assert(sizeof(SolverSettings) == 184, "SolverSettings changed: update the settings tables below");
 static_assert(sizeof(XpbdMaterial) == 24 && sizeof(DistanceConstraint) == 40 && sizeof(BendConstraint) == 48 &&
                   sizeof(TriarapConstraint) == 88 && sizeof(PinConstraint) == 72 && sizeof(AttachConstraint) == 64 &&
                   sizeof(PtPrimConstraint) == 96 && sizeof(FemConstraint) == 88,
@@ -47,6 +47,7 @@ const std::pair<const char*, bool SolverSettings::*> kBoolSettings[] = {
     {"collision_failsafe", &SolverSettings::collision_failsafe},
     {"jacobi_contacts", &SolverSettings::jacobi_contacts},
     {"ccd_per_pass", &SolverSettings::ccd_per_pass},
+    {"pair_refresh", &SolverSettings::pair_refresh},
     {"profile", &SolverSettings::profile},
 };
 const std::pair<const char*, Vec3 SolverSettings::*> kVecSettings[] = {
@@ -364,6 +365,8 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
     const bool optional = std::strcmp(name, "collision_failsafe") == 0 || std::strcmp(name, "jacobi_contacts") == 0;
     // Absent in files written before it existed, whose passes all tested the whole substep.
     if (std::strcmp(name, "ccd_per_pass") == 0 && !h5::has_attribute(f, group, name)) { s.*m = false; continue; }
+    // Absent in files written before it existed, whose passes all queried afresh.
+    if (std::strcmp(name, "pair_refresh") == 0 && !h5::has_attribute(f, group, name)) { s.*m = false; continue; }
     if (optional && !h5::has_attribute(f, group, name)) continue;
     s.*m = h5::read_attribute<int>(f, group, name) != 0;
   }

@@ -59,6 +59,55 @@ TEST(WEFT_TEST_SUITE, proximity_bounds_cut_every_move_back_and_keep_pairs_apart)
   EXPECT_EQ(b.cut_count(Exec()), 0);
 }
 
+// A refresh keeps the last full query's pairs and margins, and spends what each point moved since. Two
+// triangles 1 cm apart with margins of 1.1 cm: the full query bounds every point by gamma 1 cm. The lower
+// triangle then moves 3.9 mm up (within its bound): at a refresh it has spent that much of gamma 1.1 cm,
+// and the narrower gap bounds the upper one.
+TEST(WEFT_TEST_SUITE, proximity_refresh_spends_what_points_moved_since_the_full_query) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  using Mem = Exec::memory_space;
+  const real gap = 0.01, th = 0.001, q = 0.011, up = 0.0039;
+  const std::vector<Vec3> x0h = {{0, 0, 0}, {0.1, 0, 0}, {0, 0, 0.1}, {0.01, gap, 0.01}, {0.05, gap, 0.01}, {0.01, gap, 0.05}};
+  Kokkos::View<int* [3], Mem> tris("tris", 2);
+  auto tm = Kokkos::create_mirror_view(tris);
+  for (int k = 0; k < 3; ++k) { tm(0, k) = k; tm(1, k) = 3 + k; }
+  Kokkos::deep_copy(tris, tm);
+  auto x = weft::test::to_device<Exec, Vec3>(x0h, "x");
+  auto w = weft::test::to_device<Exec, real>(std::vector<real>(6, 1.0), "w");
+  auto thickness = weft::test::to_device<Exec, real>(std::vector<real>(6, th), "th");
+  auto rmask = weft::test::to_device<Exec, uint8_t>({0x3F, 0x3F}, "rmask");
+  auto pairs = weft::test::to_device<Exec, weft::IndexPair>({{0, 1}}, "pairs");
+  const weft::BoundSettings bs;
+  const auto margins = weft::test::to_device<Exec, real>({q, q}, "margins");
+  weft::DisplacementBounds<Exec> b(6, margins, margins, bs);
+  weft::SideMesh<Mem> cloth;
+  cloth.tris = tris;
+  cloth.rmask = rmask;
+  cloth.thickness = thickness;
+  auto query = [&](bool refresh) {
+    b.prepare(Exec(), x, x, w, tris, /*first*/ true, refresh);
+    cloth.x = cloth.xs = cloth.xo = b.x0();
+    b.add_pairs(Exec(), cloth, cloth, pairs, 1, b.relative_end(), w);
+    b.finish(Exec(), w);
+    return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.bounds());
+  };
+  EXPECT_GT(b.spent(Exec(), x, w), 6);  // before any full query: more than every point
+  const auto full = query(false);
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(full(i), bs.gamma * gap, 1e-12) << "point " << i;
+  std::vector<Vec3> moved = x0h;
+  for (int i = 0; i < 3; ++i) moved[i].y += up;
+  Kokkos::deep_copy(x, weft::test::to_device<Exec, Vec3>(moved, "moved"));
+  b.truncate(Exec(), x, w);
+  EXPECT_EQ(b.cut_count(Exec()), 0);
+  EXPECT_EQ(b.spent(Exec(), x, w), 3);  // the lower points moved more than half of gamma q
+  const auto kept = query(true);
+  for (int i = 0; i < 6; ++i)
+    EXPECT_NEAR(kept(i), i < 3 ? bs.gamma * q - up : bs.gamma * (gap - up), 1e-9) << "point " << i;
+  // A full query again starts the budget afresh.
+  const auto again = query(false);
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(again(i), bs.gamma * (gap - up), 1e-9) << "point " << i;
+}
+
 // The twist winds the sheet into a rope: the contacts never converge in the schedule's iterations, yet
 // nothing crosses and nothing is moved back. Pins reach their targets within their bounds like every other
 // point, so they sit exactly on their animation until the rope jams next to them (from frame 28 at this
@@ -68,7 +117,7 @@ TEST(WEFT_TEST_SUITE, proximity_twist_never_crosses_and_pins_follow_until_it_jam
   weft::Scene s = weft::io::make_builtin_scene("twist", {12});
   ASSERT_EQ(s.settings.contact_model, weft::ContactModel::Proximity);  // the default
   weft::SimulationOn<Exec> sim(s);
-  long queries = 0;
+  long passes = 0;
   weft::real lag = 0;
   for (int f = 0; f < 45; ++f) {
     const weft::FrameStats fs = sim.step_frame();
@@ -76,12 +125,12 @@ TEST(WEFT_TEST_SUITE, proximity_twist_never_crosses_and_pins_follow_until_it_jam
     ASSERT_EQ(fs.failsafe_points, 0);
     if (fs.frame <= 25) ASSERT_EQ(fs.max_pin_lag, 0.0) << "frame " << fs.frame;
     lag = std::max(lag, fs.max_pin_lag);
-    queries += fs.collision_queries;
+    passes += fs.collision_passes;
     if (f % 3 == 2 || f >= 33) ASSERT_EQ(sim.intersections(), 0) << "frame " << fs.frame;
   }
   std::printf("twist at 12 x 12: largest pin lag over 45 frames %.3e m\n", lag);
   EXPECT_GT(lag, 0.0);
-  EXPECT_GE(queries, 45 * s.settings.substeps * s.settings.collision_passes);
+  EXPECT_GE(passes, 45 * s.settings.substeps * s.settings.collision_passes);
 }
 
 // The skirt's waistband is pinned to the swaying body: it tracks the body exactly, and the five layers
@@ -103,14 +152,18 @@ TEST(WEFT_TEST_SUITE, proximity_folding_sheet_stays_free_of_intersections) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::Scene s = weft::io::make_builtin_scene("drape-sphere", {14});
   weft::SimulationOn<Exec> sim(s);
-  long contacts = 0;
+  ASSERT_TRUE(s.settings.pair_refresh);  // the default
+  long contacts = 0, passes = 0, queries = 0;
   for (int f = 0; f < 36; ++f) {
     const weft::FrameStats fs = sim.step_frame();
     ASSERT_EQ(fs.non_finite, 0);
     contacts = std::max(contacts, fs.contacts);
+    passes += fs.collision_passes;
+    queries += fs.collision_queries;
     if (f % 6 == 5) ASSERT_EQ(sim.intersections(), 0) << "frame " << fs.frame;
   }
   EXPECT_GT(contacts, 0);
+  EXPECT_LT(queries, passes);  // passes kept their pairs, and nothing crossed
 }
 
 }  // namespace

@@ -502,9 +502,19 @@ TEST(WEFT_TEST_SUITE, cli_contact_model_switch_is_recorded_and_resumed) {
   expect_recorded_and_resumed(weft, dir, {"run builtin:layer-stack --res 4 --quiet", "--contact-model ccd",
                                           "contact model ccd", "contact_model", "--contact-model ipc",
                                           "--contact-model"});
-  // The default reports its queries per frame.
+  // The default reports its passes and full queries per frame.
   ASSERT_EQ(weft("run builtin:layer-stack --res 4 --frames 1-2"), 0) << weft.output;
-  EXPECT_NE(weft.output.find("queries 20 ("), std::string::npos) << weft.output;
+  EXPECT_NE(weft.output.find("passes 20 ("), std::string::npos) << weft.output;
+  EXPECT_NE(weft.output.find(" full queries)"), std::string::npos) << weft.output;
+}
+
+TEST(WEFT_TEST_SUITE, cli_pair_refresh_switch_is_recorded_and_resumed) {
+  WEFT_NEED_CLI();
+  const CacheDir dir("cli_pair_refresh");
+  Cli weft(dir);
+  expect_recorded_and_resumed(weft, dir, {"run builtin:layer-stack --res 4 --quiet", "--pair-refresh off",
+                                          "pair refresh off", "pair_refresh", "--pair-refresh sometimes",
+                                          "--pair-refresh"});
 }
 
 TEST(WEFT_TEST_SUITE, cli_contact_solver_switch_is_recorded_and_resumed) {

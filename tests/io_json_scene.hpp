@@ -66,7 +66,8 @@ const char* kScene = R"({
   "settings": {"fps": 30, "frames": [1, 3], "substeps": 4, "iterations": 15, "collision_passes": 3,
                "smoothing": 2, "gravity": [0, -10, 0], "wind": [1, 0, 0], "damping": 0.5,
                "impact_zone_smoothing": false, "contact_solver": "jacobi", "ccd_span": "substep",
-               "tethers": 1.1},
+               "tethers": 1.1, "contact_model": "ccd", "early_pass_fraction": 0.05, "max_early_passes": 2,
+               "pair_refresh": false},
   "cloth": [
     {"obj": "flag.obj", "material": {"density": 0.2, "thickness": 0.003}, "pins": [{"points": [0, 3]}]},
     {"generator": "grid", "res": [4, 2], "origin": [0, 2, 0], "u": [1, 0, 0], "v": [0, 0, 0.5],
@@ -130,6 +131,10 @@ TEST(WEFT_TEST_SUITE, io_json_scene_gives_the_expected_scene) {
   EXPECT_TRUE(st.jacobi_contacts);
   EXPECT_FALSE(st.ccd_per_pass);
   EXPECT_EQ(st.tether_stretch, 1.1);
+  EXPECT_EQ(st.contact_model, ContactModel::Ccd);
+  EXPECT_EQ(st.early_pass_fraction, 0.05);
+  EXPECT_EQ(st.max_early_passes, 2);
+  EXPECT_FALSE(st.pair_refresh);
 
   const ClothPoints &p = s.points, &q = want.points;
   ASSERT_EQ(p.size(), 4u + 15u);
@@ -246,6 +251,8 @@ TEST(WEFT_TEST_SUITE, io_json_errors_name_file_and_path) {
       {R"({"settings": {"fps": "24"}})", ": settings.fps: expected a number"},
       {R"({"settings": {"contact_solver": "sor"}})", ": settings.contact_solver: expected \"gauss-seidel\" or \"jacobi\""},
       {R"({"settings": {"ccd_span": "frame"}})", ": settings.ccd_span: expected \"substep\" or \"pass\""},
+      {R"({"settings": {"contact_model": "ipc"}})", ": settings.contact_model: expected \"proximity\" or \"ccd\""},
+      {R"({"settings": {"pair_refresh": 1}})", ": settings.pair_refresh: expected true or false"},
       {R"({"settings": {"tethers": 0.9}})", ": settings.tethers: expected 0 (no tethers) or a stretch of at least 1"},
       {cloth0 + R"({"generator": "grid", "material": {"density": "heavy"}}]})",
        ": cloth[1].material.density: expected a number"},
