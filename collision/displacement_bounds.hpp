@@ -32,17 +32,21 @@ KOKKOS_INLINE_FUNCTION Fixed to_fixed(real d) { return d < kLimit ? Fixed(max_(d
 KOKKOS_INLINE_FUNCTION real from_fixed(Fixed f) { return real(f) / kScale; }
 
 // Per point, component k of the move it wants from X0 (its prediction, or the deficit left by the last
-// query), 0 for points that do not move: summed, the common translation t.
+// query; a pinned point's, to its target), 0 for the points not averaged: summed, the common translation
+// t. `pinned`: the pinned points are averaged, else the free points.
 template <class Mem>
 struct WantedComponent {
   Kokkos::View<const Vec3*, Mem> x, x0, deficit;
+  Kokkos::View<const int*, Mem> pending;
   Kokkos::View<const real*, Mem> w;
   Kokkos::View<real*, Mem> out;
   int k;
-  bool resume;
+  bool resume, pinned;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
-    if (!(w(i) > 0)) { out(i) = 0; return; }
-    const Vec3 d = resume ? x(i) + deficit(i) - x0(i) : x(i) - x0(i);
+    const bool free = w(i) > 0;
+    if (free == pinned) { out(i) = 0; return; }
+    const Vec3 target = !resume ? x(i) : free ? x(i) + deficit(i) : pending(i) ? deficit(i) : x(i);
+    const Vec3 d = target - x0(i);
     out(i) = k == 0 ? d.x : k == 1 ? d.y : d.z;
   }
 };
@@ -302,6 +306,7 @@ struct BoundSettings {
   real gamma = 0.4;          // a point moves at most gamma times its nearest distance (< 1/2)
   real detect_scale = 1.25;  // the contact reach, as the narrow phase's (times the two thicknesses)
   bool bound_pins = true;    // pinned points reach their targets within their bounds too (else they jump)
+  bool animated_pins = false;  // the scene's pins follow an animation: the common translation is theirs
 };
 
 // The bounds' working memory and kernels. Usage per query: prepare() (the common translation and the
@@ -363,12 +368,18 @@ class DisplacementBounds {
       movable_ = sum_counts(exec, flag_);
     }
     real sum[3] = {0, 0, 0};
+    // The cloth's reference motion: with animated pins, theirs (what it hangs from: with the free points'
+    // mean the jammed twist drifted off, pins and all, to 20 m/s); on still pins or none, its free
+    // points' (a sheet on still pins, struck by a fast collider, moves on with it).
+    const long pinned = n - movable_;
+    const bool by_pins = s_.bound_pins && s_.animated_pins && pinned > 0;
+    const long averaged = by_pins ? pinned : movable_;
     for (int k = 0; k < 3 && movable_ > 0; ++k) {
       Kokkos::parallel_for("weft::bounds_wanted", Kokkos::RangePolicy<Exec>(exec, 0, n),
-                           WantedComponent<Mem>{x, x0_, deficit_, w, scratch_, k, resume_});
+                           WantedComponent<Mem>{x, x0_, deficit_, pending_, w, scratch_, k, resume_, by_pins});
       sum[k] = reduce_fixed(exec, scratch_, SumOp{});
     }
-    t_ = movable_ > 0 ? Vec3{sum[0], sum[1], sum[2]} / real(movable_) : Vec3{0, 0, 0};
+    t_ = movable_ > 0 ? Vec3{sum[0], sum[1], sum[2]} / real(averaged) : Vec3{0, 0, 0};
     Kokkos::parallel_for("weft::bounds_prepare", Kokkos::RangePolicy<Exec>(exec, 0, n),
                          PreparePoints<Mem>{x, x0_, deficit_, pending_, w, want_, xrel_, xb_, dmin_, qmin_, t_,
                                             resume_, s_.bound_pins, refresh_});
