@@ -31,6 +31,16 @@ constexpr Fixed kFar = Fixed(kLimit * kScale);
 KOKKOS_INLINE_FUNCTION Fixed to_fixed(real d) { return d < kLimit ? Fixed(max_(d, real(0)) * kScale) : kFar; }
 KOKKOS_INLINE_FUNCTION real from_fixed(Fixed f) { return real(f) / kScale; }
 
+// Where point i wants to go: where it stands, plus (at a later query of the substep, `resume`) the
+// deficit the last query left a free point, or a pinned point's target while it is short of it.
+template <class Points, class Deficit, class Pending, class Weights>
+KOKKOS_INLINE_FUNCTION Vec3 wanted_position(const Points& x, const Deficit& deficit, const Pending& pending,
+                                            const Weights& w, long i, bool resume) {
+  if (!resume) return x(i);
+  if (w(i) > 0) return x(i) + deficit(i);
+  return pending(i) ? deficit(i) : x(i);
+}
+
 // Per point, component k of the move it wants from X0 (its prediction, or the deficit left by the last
 // query; a pinned point's, to its target), 0 for the points not averaged: summed, the common translation
 // t. `pinned`: the pinned points are averaged, else the free points.
@@ -45,8 +55,7 @@ struct WantedComponent {
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const bool free = w(i) > 0;
     if (free == pinned) { out(i) = 0; return; }
-    const Vec3 target = !resume ? x(i) : free ? x(i) + deficit(i) : pending(i) ? deficit(i) : x(i);
-    const Vec3 d = target - x0(i);
+    const Vec3 d = wanted_position(x, deficit, pending, w, i, resume) - x0(i);
     out(i) = k == 0 ? d.x : k == 1 ? d.y : d.z;
   }
 };
@@ -66,7 +75,7 @@ struct PreparePoints {
   bool resume, pins, refresh;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const bool free = pins || w(i) > 0;
-    const Vec3 target = !resume ? x(i) : w(i) > 0 ? x(i) + deficit(i) : pending(i) ? deficit(i) : x(i);
+    const Vec3 target = wanted_position(x, deficit, pending, w, i, resume);
     if (free) want(i) = max_(want(i), norm(target - x0(i) - t));
     xrel(i) = free ? x0(i) : x(i) - t;
     xb(i) = free ? x0(i) + t : x(i);
@@ -267,9 +276,8 @@ struct Truncate {
   bool carry, resume;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const bool pinned = !(w(i) > 0);
-    Vec3 xi = x(i);
     // A pinned point goes on to its target itself, so it lands on it exactly.
-    if (resume) xi = pinned ? (pending(i) ? deficit(i) : xi) : xi + deficit(i);
+    const Vec3 xi = wanted_position(x, deficit, pending, w, i, resume);
     const Vec3 base = x0(i) + t, d = xi - base;
     const real l2 = norm2(d), b = bound(i);
     if (!(l2 > b * b)) {

@@ -9,54 +9,74 @@ namespace {
 using weft::real;
 using weft::Vec3;
 
+// Two triangles `gap` apart, one above the other, each with query margin `margin`, and the bounds over
+// their one candidate pair.
+struct TwoTriangles {
+  using Exec = WEFT_TEST_EXECSPACE;
+  using Mem = Exec::memory_space;
+  static constexpr real th = 0.001;
+  const real gap;
+  const std::vector<Vec3> x0h;
+  Kokkos::View<int* [3], Mem> tris{"tris", 2};
+  Kokkos::View<Vec3*, Mem> x;
+  Kokkos::View<real*, Mem> w;
+  Kokkos::View<weft::IndexPair*, Mem> pairs;
+  weft::SideMesh<Mem> cloth;
+  const weft::BoundSettings bs;
+  weft::DisplacementBounds<Exec> b;
+
+  TwoTriangles(real gap_, real margin)
+      : gap(gap_), x0h{{0, 0, 0}, {0.1, 0, 0}, {0, 0, 0.1}, {0.01, gap_, 0.01}, {0.05, gap_, 0.01}, {0.01, gap_, 0.05}},
+        x(weft::test::to_device<Exec, Vec3>(x0h, "x")),
+        w(weft::test::to_device<Exec, real>(std::vector<real>(6, 1.0), "w")),
+        pairs(weft::test::to_device<Exec, weft::IndexPair>({{0, 1}}, "pairs")),
+        b(6, weft::test::to_device<Exec, real>({margin, margin}, "margins"),
+          weft::test::to_device<Exec, real>({margin, margin}, "margins"), bs) {
+    auto tm = Kokkos::create_mirror_view(tris);
+    for (int k = 0; k < 3; ++k) { tm(0, k) = k; tm(1, k) = 3 + k; }
+    Kokkos::deep_copy(tris, tm);
+    cloth.tris = tris;
+    cloth.rmask = weft::test::to_device<Exec, uint8_t>({0x3F, 0x3F}, "rmask");
+    cloth.thickness = weft::test::to_device<Exec, real>(std::vector<real>(6, th), "th");
+  }
+  // A query from where the points stand (a full one, or a refresh); the bounds on the host.
+  auto query(bool refresh = false) {
+    b.prepare(Exec(), x, x, w, tris, /*first*/ true, refresh);
+    cloth.x = cloth.xs = cloth.xo = b.x0();
+    b.add_pairs(Exec(), cloth, cloth, pairs, 1, b.relative_end(), w);
+    b.finish(Exec(), w);
+    return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.bounds());
+  }
+  void move_to(const std::vector<Vec3>& p) { Kokkos::deep_copy(x, weft::test::to_device<Exec, Vec3>(p, "moved")); }
+};
+
 // Two triangles 1 cm apart, one above the other. Every point's bound is gamma times that gap; moves of
 // 5 cm towards each other are cut back to the bound, and the gap keeps at least (1 - 2 gamma) of itself.
 TEST(WEFT_TEST_SUITE, proximity_bounds_cut_every_move_back_and_keep_pairs_apart) {
   using Exec = WEFT_TEST_EXECSPACE;
-  using Mem = Exec::memory_space;
-  const real gap = 0.01, th = 0.001;
-  const std::vector<Vec3> x0h = {{0, 0, 0}, {0.1, 0, 0}, {0, 0, 0.1}, {0.01, gap, 0.01}, {0.05, gap, 0.01}, {0.01, gap, 0.05}};
-  Kokkos::View<int* [3], Mem> tris("tris", 2);
-  auto tm = Kokkos::create_mirror_view(tris);
-  for (int k = 0; k < 3; ++k) { tm(0, k) = k; tm(1, k) = 3 + k; }
-  Kokkos::deep_copy(tris, tm);
-  auto x = weft::test::to_device<Exec, Vec3>(x0h, "x");
-  auto w = weft::test::to_device<Exec, real>(std::vector<real>(6, 1.0), "w");
-  auto thickness = weft::test::to_device<Exec, real>(std::vector<real>(6, th), "th");
-  auto rmask = weft::test::to_device<Exec, uint8_t>({0x3F, 0x3F}, "rmask");
-  auto pairs = weft::test::to_device<Exec, weft::IndexPair>({{0, 1}}, "pairs");
-  const weft::BoundSettings bs;
-  const real floor = 0.02;  // query margin of each triangle: more than the gap, so the gap decides
-  const auto margins = weft::test::to_device<Exec, real>({floor, floor}, "floor");
-  weft::DisplacementBounds<Exec> b(6, margins, margins, bs);
-  b.prepare(Exec(), x, x, w, tris, /*first*/ true);
-  weft::SideMesh<Mem> cloth;
-  cloth.x = cloth.xs = cloth.xo = b.x0();
-  cloth.tris = tris;
-  cloth.rmask = rmask;
-  cloth.thickness = thickness;
-  b.add_pairs(Exec(), cloth, cloth, pairs, 1, b.relative_end(), w);
-  b.finish(Exec(), w);
-  const auto bound = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.bounds());
-  for (int i = 0; i < 6; ++i) EXPECT_NEAR(bound(i), bs.gamma * gap, 1e-12) << "point " << i;
+  // Query margins of 2 cm: more than the gap, so the gap decides.
+  TwoTriangles s(0.01, 0.02);
+  const real gap = s.gap, gamma = s.bs.gamma;
+  const auto bound = s.query();
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(bound(i), gamma * gap, 1e-12) << "point " << i;
   // Lower triangle moves 5 cm up, upper 5 cm down (and sideways): every move is cut back to its bound.
-  std::vector<Vec3> moved = x0h;
+  std::vector<Vec3> moved = s.x0h;
   for (int i = 0; i < 6; ++i) moved[i] += i < 3 ? Vec3{0.01, 0.05, 0} : Vec3{-0.02, -0.05, 0.01};
-  Kokkos::deep_copy(x, weft::test::to_device<Exec, Vec3>(moved, "moved"));
-  b.truncate(Exec(), x, w);
-  EXPECT_EQ(b.cut_count(Exec()), 6);
-  const auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x);
+  s.move_to(moved);
+  s.b.truncate(Exec(), s.x, s.w);
+  EXPECT_EQ(s.b.cut_count(Exec()), 6);
+  const auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.x);
   real top = -1, bottom = 1;
   for (int i = 0; i < 6; ++i) {
-    EXPECT_LE(weft::norm(xh(i) - x0h[i]), bound(i) * (1 + 1e-12)) << "point " << i;
-    EXPECT_NEAR(weft::norm(xh(i) - x0h[i]), bound(i), 1e-12) << "point " << i;
+    EXPECT_LE(weft::norm(xh(i) - s.x0h[i]), bound(i) * (1 + 1e-12)) << "point " << i;
+    EXPECT_NEAR(weft::norm(xh(i) - s.x0h[i]), bound(i), 1e-12) << "point " << i;
     if (i < 3) top = std::max(top, xh(i).y); else bottom = std::min(bottom, xh(i).y);
   }
-  EXPECT_GE(bottom - top, (1 - 2 * bs.gamma) * gap * (1 - 1e-9));
+  EXPECT_GE(bottom - top, (1 - 2 * gamma) * gap * (1 - 1e-9));
   // A move within the bound is left alone.
-  Kokkos::deep_copy(x, weft::test::to_device<Exec, Vec3>(x0h, "back"));
-  b.truncate(Exec(), x, w);
-  EXPECT_EQ(b.cut_count(Exec()), 0);
+  s.move_to(s.x0h);
+  s.b.truncate(Exec(), s.x, s.w);
+  EXPECT_EQ(s.b.cut_count(Exec()), 0);
 }
 
 // A refresh keeps the last full query's pairs and margins, and spends what each point moved since. Two
@@ -65,47 +85,24 @@ TEST(WEFT_TEST_SUITE, proximity_bounds_cut_every_move_back_and_keep_pairs_apart)
 // and the narrower gap bounds the upper one.
 TEST(WEFT_TEST_SUITE, proximity_refresh_spends_what_points_moved_since_the_full_query) {
   using Exec = WEFT_TEST_EXECSPACE;
-  using Mem = Exec::memory_space;
-  const real gap = 0.01, th = 0.001, q = 0.011, up = 0.0039;
-  const std::vector<Vec3> x0h = {{0, 0, 0}, {0.1, 0, 0}, {0, 0, 0.1}, {0.01, gap, 0.01}, {0.05, gap, 0.01}, {0.01, gap, 0.05}};
-  Kokkos::View<int* [3], Mem> tris("tris", 2);
-  auto tm = Kokkos::create_mirror_view(tris);
-  for (int k = 0; k < 3; ++k) { tm(0, k) = k; tm(1, k) = 3 + k; }
-  Kokkos::deep_copy(tris, tm);
-  auto x = weft::test::to_device<Exec, Vec3>(x0h, "x");
-  auto w = weft::test::to_device<Exec, real>(std::vector<real>(6, 1.0), "w");
-  auto thickness = weft::test::to_device<Exec, real>(std::vector<real>(6, th), "th");
-  auto rmask = weft::test::to_device<Exec, uint8_t>({0x3F, 0x3F}, "rmask");
-  auto pairs = weft::test::to_device<Exec, weft::IndexPair>({{0, 1}}, "pairs");
-  const weft::BoundSettings bs;
-  const auto margins = weft::test::to_device<Exec, real>({q, q}, "margins");
-  weft::DisplacementBounds<Exec> b(6, margins, margins, bs);
-  weft::SideMesh<Mem> cloth;
-  cloth.tris = tris;
-  cloth.rmask = rmask;
-  cloth.thickness = thickness;
-  auto query = [&](bool refresh) {
-    b.prepare(Exec(), x, x, w, tris, /*first*/ true, refresh);
-    cloth.x = cloth.xs = cloth.xo = b.x0();
-    b.add_pairs(Exec(), cloth, cloth, pairs, 1, b.relative_end(), w);
-    b.finish(Exec(), w);
-    return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.bounds());
-  };
-  EXPECT_GT(b.spent(Exec(), x, w), 6);  // before any full query: more than every point
-  const auto full = query(false);
-  for (int i = 0; i < 6; ++i) EXPECT_NEAR(full(i), bs.gamma * gap, 1e-12) << "point " << i;
-  std::vector<Vec3> moved = x0h;
+  const real q = 0.011, up = 0.0039;
+  TwoTriangles s(0.01, q);
+  const real gap = s.gap, gamma = s.bs.gamma;
+  EXPECT_GT(s.b.spent(Exec(), s.x, s.w), 6);  // before any full query: more than every point
+  const auto full = s.query();
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(full(i), gamma * gap, 1e-12) << "point " << i;
+  std::vector<Vec3> moved = s.x0h;
   for (int i = 0; i < 3; ++i) moved[i].y += up;
-  Kokkos::deep_copy(x, weft::test::to_device<Exec, Vec3>(moved, "moved"));
-  b.truncate(Exec(), x, w);
-  EXPECT_EQ(b.cut_count(Exec()), 0);
-  EXPECT_EQ(b.spent(Exec(), x, w), 3);  // the lower points moved more than half of gamma q
-  const auto kept = query(true);
+  s.move_to(moved);
+  s.b.truncate(Exec(), s.x, s.w);
+  EXPECT_EQ(s.b.cut_count(Exec()), 0);
+  EXPECT_EQ(s.b.spent(Exec(), s.x, s.w), 3);  // the lower points moved more than half of gamma q
+  const auto kept = s.query(true);
   for (int i = 0; i < 6; ++i)
-    EXPECT_NEAR(kept(i), i < 3 ? bs.gamma * q - up : bs.gamma * (gap - up), 1e-9) << "point " << i;
+    EXPECT_NEAR(kept(i), i < 3 ? gamma * q - up : gamma * (gap - up), 1e-9) << "point " << i;
   // A full query again starts the budget afresh.
-  const auto again = query(false);
-  for (int i = 0; i < 6; ++i) EXPECT_NEAR(again(i), bs.gamma * (gap - up), 1e-9) << "point " << i;
+  const auto again = s.query();
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(again(i), gamma * (gap - up), 1e-9) << "point " << i;
 }
 
 // The twist winds the sheet into a rope: the contacts never converge in the schedule's iterations, yet
