@@ -2,6 +2,7 @@
 // DIR/<scene>.$F4.geo or .obj, for Houdini (File node) or any OBJ reader.
 #include "apps/cli.hpp"
 #include "io/cache_file.hpp"
+#include "io/scene_source.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -24,8 +25,7 @@ int export_frames(const ExportOptions& o) {
   const int first = cache->frames().front(), last = cache->frames().back();
   int a = first, b = last;
   if (!o.frames.empty()) {
-    char extra = 0;
-    if (std::sscanf(o.frames.c_str(), "%d-%d%c", &a, &b, &extra) != 2 || b < a)
+    if (!io::parse_frame_range(o.frames, a, b))
       throw Error("--frames wants A-B with A <= B, got '" + o.frames + "'", 2);
     if (a < first || b > last)
       throw Error(o.cache + " holds frames " + std::to_string(first) + "-" + std::to_string(last) + ", not all of " +

@@ -2,6 +2,7 @@
 #include "apps/cli.hpp"
 #include "io/scene_file.hpp"
 #include "io/vellum_import.hpp"
+#include "io/scene_source.hpp"
 
 #include <array>
 #include <cstdio>
@@ -37,8 +38,7 @@ io::VellumCollider parse_collider(const std::string& arg) {
 
 std::array<int, 2> parse_frames(const std::string& range) {
   int a = 0, b = 0;
-  char extra = 0;
-  if (std::sscanf(range.c_str(), "%d-%d%c", &a, &b, &extra) != 2 || b < a)
+  if (!io::parse_frame_range(range, a, b))
     throw Error("--frames wants A-B with A <= B, got '" + range + "'", 2);
   return {a, b};
 }

@@ -71,6 +71,7 @@ void print_cache(const std::string& path) {
   std::cout << path << ": weft cache, format version " << io::kCacheFormatVersion << "\n"
             << "scene " << h.scene << ", computed by the " << h.backend << " backend\n"
             << "points " << h.points << ", triangles " << h.triangles.size() << "\n";
+  if (!h.overrides.empty()) std::cout << "set " << h.overrides << "\n";
   if (c.frame_count() == 0) {
     std::cout << "frames: none\n";
   } else {

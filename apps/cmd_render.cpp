@@ -27,8 +27,7 @@ int render(const RenderOptions& o) {
   if (cache->frame_count() == 0) throw Error(o.cache + ": the cache holds no frames", 2);
   int a = cache->frames().front(), b = cache->frames().back();
   if (!o.frames.empty()) {
-    char extra = 0;
-    if (std::sscanf(o.frames.c_str(), "%d-%d%c", &a, &b, &extra) != 2 || b < a)
+    if (!io::parse_frame_range(o.frames, a, b))
       throw Error("--frames wants A-B with A <= B, got '" + o.frames + "'", 2);
   }
   std::unique_ptr<Scene> scene;

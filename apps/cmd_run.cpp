@@ -7,10 +7,12 @@
 #include "core/hash.hpp"
 #include "io/cache_file.hpp"
 #include "io/scene_file.hpp"
+#include "io/scene_overrides.hpp"
 #include "io/scene_source.hpp"
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -33,8 +35,7 @@ void apply_schedule(const std::string& name, SolverSettings& st) {
 void apply_frames(const std::string& range, SolverSettings& st) {
   if (range.empty()) return;
   int a = 0, b = 0;
-  char extra = 0;
-  if (std::sscanf(range.c_str(), "%d-%d%c", &a, &b, &extra) != 2 || b < a)
+  if (!io::parse_frame_range(range, a, b))
     throw Error("--frames wants A-B with A <= B, got '" + range + "'", 2);
   st.frame_start = a;  // the scene's initial state is frame A
   st.frame_end = b;
@@ -65,23 +66,8 @@ std::string resume_command(const RunOptions& o) {
   opt("--contact-solver", o.contact_solver);
   opt("--ccd-span", o.ccd_span);
   opt("--tethers", o.tethers);
+  for (const std::string& kv : o.set) opt("--set", kv);
   return c + " -o " + o.output + " --resume";
-}
-
-// Why the cache cannot be continued by this run ("" when it can): it must come from the same points,
-// triangles, settings (the last frame aside) and initial state, or the result would differ from a straight run.
-std::string resume_mismatch(const io::CacheReader& c, const io::CacheHeader& run, const std::vector<Vec3>& initial) {
-  const io::CacheHeader& h = c.header();
-  if (c.frame_count() == 0) return "it holds no frames";
-  if (h.points != run.points)
-    return "it has " + std::to_string(h.points) + " points, the scene " + std::to_string(run.points);
-  if (h.triangles != run.triangles) return "its triangles differ from the scene's";
-  for (const std::string& field : io::differing_settings(h.settings, run.settings))
-    if (field != "frame_end" && field != "profile") return "it was computed with another " + field + " setting";
-  const std::vector<Vec3> first = c.positions(0);
-  if (std::memcmp(first.data(), initial.data(), initial.size() * sizeof(Vec3)) != 0)
-    return "its first frame is not the scene's initial state";
-  return "";
 }
 
 // SIGINT / SIGTERM during the frame loop ask the run to stop once the frame in progress is written; a
@@ -153,6 +139,11 @@ class Progress {
 }  // namespace
 
 int run_scene(const GlobalOptions& g, const RunOptions& o) {
+  if (std::find(o.set.begin(), o.set.end(), "help") != o.set.end()) {
+    std::printf("settings for --set NAME=VALUE (and batch wedges, docs/farm.md):\n");
+    for (const std::string& line : io::override_help()) std::printf("  %s\n", line.c_str());
+    return 0;
+  }
   const Backend b = resolve_backend(g);
   if (o.resume && o.output.empty()) throw Error("--resume continues a cache: give it with -o CACHE.h5", 2);
   Runtime rt(g.threads);
@@ -160,6 +151,9 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   SolverSettings& st = scene.settings;
   apply_frames(o.frames, st);
   apply_schedule(o.schedule, st);
+  std::vector<io::SceneOverride> overrides;
+  for (const std::string& kv : o.set) overrides.push_back(io::parse_override(kv));
+  io::apply_overrides(scene, overrides);
   if (o.substeps >= 0) st.substeps = o.substeps;
   if (o.iterations >= 0) st.iterations = o.iterations;
   if (o.collision_passes >= 0) st.collision_passes = o.collision_passes;
@@ -185,7 +179,8 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
                 scene.name.c_str(), scene.points.size(), scene.triangles.size(), sim->row_count(), sim->colour_count(),
                 sim->tether_count(), backend_name(b));
 
-  const io::CacheHeader header{scene.name, backend_name(b), scene.points.size(), scene.triangles, st};
+  const io::CacheHeader header{scene.name, backend_name(b), scene.points.size(), scene.triangles, st,
+                               io::overrides_text(overrides)};
   const std::string stem = io::frame_file_stem(scene.name);
   std::unique_ptr<io::CacheWriter> cache;
   const auto write_frame = [&](const FrameStats& fs) {
@@ -206,7 +201,7 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   uint64_t h = 0;
   if (o.resume && std::filesystem::exists(o.output)) {
     const io::CacheReader previous(o.output);
-    const std::string why = resume_mismatch(previous, header, scene.points.position);
+    const std::string why = io::resume_mismatch(previous, header, scene.points.position);
     if (!why.empty()) throw Error(o.output + ": cannot resume from this cache: " + why, 2);
     const int k = std::min(previous.frame_count(), st.frame_end - st.frame_start + 1);
     if (o.hash) h = io::cache_hash(previous, k);  // the hash covers every frame, computed now or before
@@ -278,6 +273,10 @@ void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   add_contact_solver_option(cmd, o->contact_solver);
   add_ccd_span_option(cmd, o->ccd_span);
   add_tethers_option(cmd, o->tethers);
+  cmd->add_option("--set", o->set,
+                  "NAME=VALUE: a setting by name, after --schedule and before the options above (repeatable; "
+                  "'--set help' lists them)")
+      ->allow_extra_args(false);
   cmd->add_flag("--hash", o->hash, "print 'hash <16 hex digits>' of every frame's positions as the last line");
   cmd->add_flag("--quiet", o->quiet, "no per-frame lines");
   cmd->add_option("-o,--output", o->output, "HDF5 cache written frame by frame (readable while the run goes on)");

@@ -3,6 +3,7 @@
 #include "apps/cli.hpp"
 
 #include <string>
+#include <vector>
 
 namespace weft::cli {
 
@@ -19,6 +20,7 @@ struct RunOptions {
   std::string contact_solver;  // "gauss-seidel" | "jacobi" | "" (the scene's setting)
   std::string ccd_span;        // "substep" | "pass" | "" (the scene's setting)
   std::string tethers;         // tether stretch, "" (the scene's setting)
+  std::vector<std::string> set;  // "name=value" settings (io/scene_overrides.hpp), applied after --schedule
   bool hash = false, quiet = false;
   std::string output, geo_dir;
   bool resume = false;

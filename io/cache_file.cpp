@@ -135,6 +135,7 @@ CacheWriter::CacheWriter(const std::string& path, const CacheHeader& header)
   h5::write_attribute(f, "/", "scene", header.scene);
   h5::write_attribute(f, "/", "backend", header.backend);
   h5::write_attribute(f, "/", "point_count", int64_t(header.points));
+  if (!header.overrides.empty()) h5::write_attribute(f, "/", "overrides", header.overrides);
   std::vector<int> tris;
   for (const auto& t : header.triangles) tris.insert(tris.end(), t.begin(), t.end());
   h5::write(f, "/triangles", tris.data(), {header.triangles.size(), 3});
@@ -211,6 +212,7 @@ CacheReader::CacheReader(const std::string& path) : impl_(std::make_unique<Impl>
   CacheHeader& h = m.header;
   h.scene = h5::read_string_attribute(f, "/", "scene");
   h.backend = h5::read_string_attribute(f, "/", "backend");
+  if (h5::has_attribute(f, "/", "overrides")) h.overrides = h5::read_string_attribute(f, "/", "overrides");
   const int64_t points = h5::read_attribute<int64_t>(f, "/", "point_count");
   if (points < 1) h5::fail(f, "/", "point_count is " + std::to_string(points));
   h.points = size_t(points);
@@ -256,6 +258,24 @@ std::vector<Vec3> CacheReader::positions(int k) const {
 std::vector<Vec3> CacheReader::velocities(int k) const {
   if (k < 0 || k >= frame_count()) throw std::out_of_range(path() + ": no stored frame " + std::to_string(k));
   return vec3s(h5::read_rows<double>(impl_->file, impl_->velocities, hsize_t(k), 1));
+}
+
+// Why the cache cannot be continued by this run ("" when it can): it must come from the same points,
+// triangles, settings (the last frame aside) and initial state, or the result would differ from a straight run.
+std::string resume_mismatch(const CacheReader& c, const CacheHeader& run, const std::vector<Vec3>& initial) {
+  const io::CacheHeader& h = c.header();
+  if (c.frame_count() == 0) return "it holds no frames";
+  if (h.points != run.points)
+    return "it has " + std::to_string(h.points) + " points, the scene " + std::to_string(run.points);
+  if (h.triangles != run.triangles) return "its triangles differ from the scene's";
+  if (h.overrides != run.overrides)
+    return "it was computed with --set '" + h.overrides + "', this run with '" + run.overrides + "'";
+  for (const std::string& field : differing_settings(h.settings, run.settings))
+    if (field != "frame_end" && field != "profile") return "it was computed with another " + field + " setting";
+  const std::vector<Vec3> first = c.positions(0);
+  if (std::memcmp(first.data(), initial.data(), initial.size() * sizeof(Vec3)) != 0)
+    return "its first frame is not the scene's initial state";
+  return "";
 }
 
 uint64_t positions_hash(const std::vector<Vec3>& x) {

@@ -23,6 +23,7 @@ struct CacheHeader {
   size_t points = 0;
   std::vector<std::array<int, 3>> triangles;
   SolverSettings settings;  // frame_start: the first frame (the initial state); frame_end: the last planned
+  std::string overrides;  // the settings given by name (`weft run --set`), io::overrides_text; "" for none
 };
 
 class CacheReader;
@@ -71,6 +72,11 @@ class CacheReader {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// Why `cache` cannot be continued by a run with this header and initial state ("" when it can): it must come
+// from the same points, triangles, settings (the last frame aside), named settings and initial state, or the
+// result would differ from a straight run. What `weft run --resume` and `weft batch` check.
+std::string resume_mismatch(const CacheReader& cache, const CacheHeader& run, const std::vector<Vec3>& initial);
 
 // Simulation::hash_positions computed on the host: the same value for the same positions.
 uint64_t positions_hash(const std::vector<Vec3>& positions);

@@ -4,6 +4,8 @@
 #include "io/json_scene.hpp"
 #include "io/scene_file.hpp"
 
+#include <cstdio>
+
 namespace weft::io {
 namespace {
 
@@ -28,6 +30,15 @@ Scene load_scene(const std::string& spec, const BuiltinOptions& opt) {
                      return k;
                    }() +
                    ")");
+}
+
+bool parse_frame_range(const std::string& text, int& first, int& last) {
+  int a = 0, b = 0;
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%d-%d%c", &a, &b, &extra) != 2 || b < a) return false;
+  first = a;
+  last = b;
+  return true;
 }
 
 }  // namespace weft::io
