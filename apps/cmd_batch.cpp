@@ -101,8 +101,10 @@ int submit(const GlobalOptions& g, const BatchOptions& o) {
     } catch (const farm::SchedulerError& e) {
       throw Error(std::string(e.what()) + "; nothing submitted", 3);
     }
-    if (!queued.empty())
-      throw Error("job " + previous.job + " of this batch is still in the queue (" + std::to_string(queued.size()) +
+    size_t active = 0;
+    for (const auto& [task, state] : queued) active += farm::slurm_active(state);
+    if (active > 0)
+      throw Error("job " + previous.job + " of this batch is still in the queue (" + std::to_string(active) +
                       " tasks): two runs would write the same caches; wait for it or scancel it. Nothing submitted", 2);
   }
   try {

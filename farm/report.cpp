@@ -2,6 +2,7 @@
 
 #include "backends/simulation.hpp"
 #include "core/hash.hpp"
+#include "farm/scheduler.hpp"
 #include "io/cache_file.hpp"
 #include "io/contact_sheet.hpp"
 #include "io/scene_source.hpp"
@@ -71,6 +72,8 @@ std::vector<TaskStatus> batch_status(const Batch& b, const std::map<int, std::st
     const Task& t = b.tasks[k];
     TaskStatus s;
     s.exit_code = read_exit_code(t);
+    int first = 0, last = 0;
+    if (io::parse_frame_range(t.frames, first, last)) s.frames_planned = last - first + 1;
     if (fs::exists(t.cache())) {
       try {
         const io::CacheReader c(t.cache());
@@ -80,8 +83,10 @@ std::vector<TaskStatus> batch_status(const Batch& b, const std::map<int, std::st
         s.state = "unreadable cache";
       }
     }
+    // The queue knows best while a task runs, and when it ended without a word of its own (cancelled, out of
+    // time, a node failure); a task that ran to its end has its exit code and its cache.
     const auto q = queue.find(int(k));
-    if (q != queue.end())
+    if (q != queue.end() && (slurm_active(q->second) || (q->second != "COMPLETED" && q->second != "FAILED")))
       s.state = lower(q->second);
     else if (!s.state.empty())
       ;

@@ -22,9 +22,12 @@ std::string slurm_script(const Batch& b);
 // `sbatch --parsable`; returns the job id. Throws SchedulerError with sbatch's own words.
 Submission submit_slurm(const Batch& b);
 
-// The queue's view of the array: array index -> state (PENDING, RUNNING, REQUEUED, ...), from
-// `squeue -r`. Tasks that have left the queue are absent. Throws SchedulerError when squeue fails.
+// The queue's view of the array: array index -> state (PENDING, RUNNING, COMPLETED, FAILED, ...), from
+// `squeue -r -t all`. Tasks the controller has forgotten (MinJobAge after they ended) are absent. Throws
+// SchedulerError when squeue fails.
 std::map<int, std::string> slurm_states(const std::string& job);
+// A state of a task that has not ended yet (PENDING, RUNNING, COMPLETING, REQUEUED, SUSPENDED, ...).
+bool slurm_active(const std::string& state);
 
 // Runs the tasks on this machine, `parallel` at a time (each with CUDA_VISIBLE_DEVICES set to its slot when
 // `gpus` > 0), printing a line as each ends; SIGINT / SIGTERM stop starting tasks and wait for the running

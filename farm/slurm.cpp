@@ -98,7 +98,8 @@ Submission submit_slurm(const Batch& b) {
 }
 
 std::map<int, std::string> slurm_states(const std::string& job) {
-  const ProcessResult r = run_process({"squeue", "-h", "-r", "-j", job, "-o", "%K|%T"});
+  // -t all: finished tasks too, while the controller remembers them (MinJobAge).
+  const ProcessResult r = run_process({"squeue", "-h", "-r", "-t", "all", "-j", job, "-o", "%K|%T"}, 60);
   std::map<int, std::string> states;
   if (r.exit_code != 0) {
     // A job that has left the queue entirely: squeue says "Invalid job id specified".
@@ -116,6 +117,13 @@ std::map<int, std::string> slurm_states(const std::string& job) {
     }
   }
   return states;
+}
+
+bool slurm_active(const std::string& state) {
+  for (const char* s : {"PENDING", "RUNNING", "REQUEUED", "REQUEUE_HOLD", "REQUEUE_FED", "SUSPENDED", "COMPLETING",
+                        "CONFIGURING", "RESIZING", "SIGNALING", "STAGE_OUT", "STOPPED", "RESV_DEL_HOLD", "SPECIAL_EXIT"})
+    if (state == s) return true;
+  return false;
 }
 
 }  // namespace weft::farm
