@@ -5,7 +5,9 @@
 #include "io/scene_source.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <string>
@@ -16,7 +18,7 @@ namespace {
 
 struct ImportOptions {
   std::string sim, constraints, output, frames;
-  std::vector<std::string> colliders;
+  std::vector<std::string> colliders, collider_thickness, collider_friction;
   bool skip_unsupported = false;
   real fps = 0;
   int substeps = -1, iterations = -1, collision_passes = -1, smoothing = -1;
@@ -36,6 +38,32 @@ io::VellumCollider parse_collider(const std::string& arg) {
   return c;
 }
 
+// --collider-thickness / --collider-friction [NAME=]VALUE: for the collider NAME, or (no NAME) for every one.
+void apply_collider_values(const std::vector<std::string>& args, const char* option,
+                           std::vector<io::VellumCollider>& colliders, real io::VellumCollider::*field) {
+  for (int named = 0; named < 2; ++named)  // the values for all first, so a named one wins
+    for (const std::string& arg : args) {
+      const size_t eq = arg.find('=');
+      if ((eq != std::string::npos) != bool(named)) continue;
+      const std::string name = named ? arg.substr(0, eq) : "", text = named ? arg.substr(eq + 1) : arg;
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != 0 || !(v >= 0) || !std::isfinite(v))
+        throw Error(std::string(option) + " wants [NAME=]VALUE with a number >= 0, got '" + arg + "'", 2);
+      bool found = false;
+      for (io::VellumCollider& c : colliders) {
+        const std::string cname = c.name.empty() ? io::collider_name_from_pattern(c.pattern) : c.name;
+        if (!named || cname == name) {
+          c.*field = v;
+          found = true;
+        }
+      }
+      if (!found)
+        throw Error(std::string(option) + " " + arg + ": " +
+                        (named ? "no --collider is named '" + name + "'" : std::string("there is no --collider")), 2);
+    }
+}
+
 std::array<int, 2> parse_frames(const std::string& range) {
   int a = 0, b = 0;
   if (!io::parse_frame_range(range, a, b))
@@ -53,6 +81,8 @@ void print_counts(const char* title, const std::map<std::string, size_t>& counts
 int import(const ImportOptions& o) {
   io::VellumImportOptions opt;
   for (const std::string& c : o.colliders) opt.colliders.push_back(parse_collider(c));
+  apply_collider_values(o.collider_thickness, "--collider-thickness", opt.colliders, &io::VellumCollider::thickness);
+  apply_collider_values(o.collider_friction, "--collider-friction", opt.colliders, &io::VellumCollider::friction);
   if (!o.frames.empty()) opt.frames = parse_frames(o.frames);
   opt.skip_unsupported = o.skip_unsupported;
   io::VellumImportReport report;
@@ -87,6 +117,12 @@ void add_import_vellum(CLI::App& app, const GlobalOptions&, Action& action) {
                   "[NAME=]FILE or frame pattern ('body.$F4.geo', .geo/.bgeo/.obj); repeatable. Attach constraints "
                   "find theirs by target_path")
       ->allow_extra_args(false);  // one value per --collider, so it never takes the positionals
+  cmd->add_option("--collider-thickness", o->collider_thickness,
+                  "[NAME=]METRES: contact thickness of the collider NAME, or of every collider (default 0); repeatable")
+      ->allow_extra_args(false);
+  cmd->add_option("--collider-friction", o->collider_friction,
+                  "[NAME=]SCALE: friction of the collider NAME, or of every collider (default 0.5); repeatable")
+      ->allow_extra_args(false);
   cmd->add_option("--frames", o->frames, "frame range A-B (A is the initial state; collider frames are read over it)");
   cmd->add_flag("--skip-unsupported", o->skip_unsupported,
                 "leave out (and list) constraint types weft cannot simulate");

@@ -1,6 +1,7 @@
-// `weft render cache.h5 -o sheet.png [--frames A-B] [--count N] [--scene SPEC [--res N]]`: a PNG contact
-// sheet of a cache's frames. With the scene it was computed from, cloth is coloured by layer and colliders
-// are drawn; without, each connected cloth piece has its own colour.
+// `weft render cache.h5 -o sheet.png [--frames A-B] [--count N] [--scene SPEC [--res N]] [--view V]
+// [--frame-all] [--zoom F]`: a PNG contact sheet of a cache's frames. With the scene it was computed from,
+// cloth is coloured by layer and colliders are drawn; without, each connected cloth piece has its own colour.
+// The cloth fills the cells unless --frame-all frames the colliders too.
 #include "apps/cli.hpp"
 #include "io/cache_file.hpp"
 #include "io/contact_sheet.hpp"
@@ -13,8 +14,10 @@ namespace weft::cli {
 namespace {
 
 struct RenderOptions {
-  std::string cache, output, frames, scene;
+  std::string cache, output, frames, scene, view = "standard";
   int res = 0, count = 8, columns = 4, cell = 360;
+  bool frame_all = false;
+  double zoom = 1;
 };
 
 int render(const RenderOptions& o) {
@@ -30,6 +33,11 @@ int render(const RenderOptions& o) {
     if (!io::parse_frame_range(o.frames, a, b))
       throw Error("--frames wants A-B with A <= B, got '" + o.frames + "'", 2);
   }
+  io::SheetView view;
+  if (!io::parse_sheet_angle(o.view, view.angle))
+    throw Error("--view wants front, side, top, three-quarter or standard, got '" + o.view + "'", 2);
+  view.frame_all = o.frame_all;
+  view.zoom = o.zoom;
   std::unique_ptr<Scene> scene;
   if (!o.scene.empty()) scene = std::make_unique<Scene>(io::load_scene(o.scene, io::BuiltinOptions{o.res}));
   io::SheetContent content;
@@ -38,7 +46,7 @@ int render(const RenderOptions& o) {
   } catch (const std::runtime_error& e) {
     throw Error(e.what(), 2);
   }
-  io::write_contact_sheet(o.output, content, o.columns, o.cell);
+  io::write_contact_sheet(o.output, content, o.columns, o.cell, view);
   std::printf("wrote %s: frames", o.output.c_str());
   for (const auto& f : content.frames) std::printf(" %d", f.frame);
   std::printf("\n");
@@ -56,6 +64,14 @@ void add_render(CLI::App& app, const GlobalOptions&, Action& run) {
   cmd->add_option("--cell", o->cell, "cell size in pixels")->capture_default_str()->check(CLI::Range(64, 2048));
   cmd->add_option("--scene", o->scene, "the scene the cache came from (builtin:NAME, .json, .h5): layer colours, colliders");
   cmd->add_option("--res", o->res, "resolution of a built-in --scene, as given to weft run")->check(CLI::PositiveNumber);
+  cmd->add_option("--view", o->view, "where the camera looks from: front, side (from +x), top, three-quarter, or standard "
+                 "(in front, a little from the side and above)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"standard", "front", "side", "top", "three-quarter"}));
+  cmd->add_flag("--frame-all", o->frame_all, "frame the colliders too (default: the cloth of every frame fills the cell)");
+  cmd->add_option("--zoom", o->zoom, "multiply the framing's scale (2: twice as large, cropped by the cell)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 100.0));
   cmd->callback([&run, o] { run = [o] { return render(*o); }; });
 }
 

@@ -106,6 +106,8 @@ int main(int argc, char** argv) {
   using namespace weft::cli;
   CLI::App app{"weft: a GPU cloth solver for character effects (XPBD, Vellum-compatible)"};
   app.require_subcommand(1);
+  // Subcommands inherit this: a global option is taken after the subcommand too (`weft run X --backend cuda`).
+  app.fallthrough();
   GlobalOptions g;
   app.add_option("--backend", g.backend, "serial | openmp | cuda (default: the fastest compiled)");
   app.add_option("--threads", g.threads, "host threads for the openmp backend")->check(CLI::NonNegativeNumber);

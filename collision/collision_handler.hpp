@@ -109,18 +109,21 @@ class CollisionHandler final : public CollisionStage<Exec> {
                       bound_settings_);
     }
     cloth_boxes_ = View<Aabb*>("weft::cloth_boxes", s.triangles.size());
-    // Collider side: all colliders' triangles over the concatenated vertices; one thickness and friction
-    // for all (the largest thickness, the first collider's friction) keeps the kernels simple.
+    // Collider side: all colliders' triangles over the concatenated vertices, each vertex with its collider's
+    // thickness and friction; a collider triangle's boxes grow by its contact reach.
     std::vector<std::array<int, 3>> ct;
+    std::vector<real> vth, vfr, tmargin;
     int off = 0;
-    real th = 0, fr = s.colliders.empty() ? 1.0 : s.colliders[0].friction;
     for (const Collider& c : s.colliders) {
       for (const auto& t : c.triangles) ct.push_back({t[0] + off, t[1] + off, t[2] + off});
       off += int(c.motion.frames[0].size());
-      th = std::max(th, c.thickness);
+      vth.resize(size_t(off), c.thickness);
+      vfr.resize(size_t(off), c.friction);
+      tmargin.resize(ct.size(), ns_.detect_scale * c.thickness);
     }
-    collider_th_ = th;
-    collider_fr_ = fr;
+    collider_th_ = upload(vth, "weft::collider_thickness");
+    collider_fr_ = upload(vfr, "weft::collider_friction");
+    collider_margin_ = upload(tmargin, "weft::collider_margin");
     collider_tris_ = upload_tris(ct);
     collider_rmask_ = upload(representative_features(ct, off), "weft::collider_rmask");
     collider_nb_ = upload_neighbours(ct);
@@ -265,7 +268,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
         swept_triangle_boxes(s.exec, View<const Vec3*>(b.x0()), View<const Vec3*>(b.end()),
                              View<const int* [3]>(cloth_tris_), margins, swept_boxes_);
         swept_triangle_boxes(s.exec, collider.xs, collider.x, View<const int* [3]>(collider_tris_),
-                             ns_.detect_scale * collider_th_, collider_boxes_);
+                             View<const real*>(collider_margin_), collider_boxes_);
       }
       if (build_) {
         cloth_bvh_.build(cloth_boxes_);
@@ -388,7 +391,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
                          cloth_boxes_);
     if (collider_boxes_.extent(0) > 0)
       swept_triangle_boxes(exec, collider.xs, collider.x, View<const int* [3]>(collider_tris_),
-                           ns_.detect_scale * collider_th_, collider_boxes_);
+                           View<const real*>(collider_margin_), collider_boxes_);
   }
   SideMesh<Mem> cloth_side(const SolverState<Exec>& s) const {
     SideMesh<Mem> m;
@@ -399,7 +402,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
   SideMesh<Mem> collider_side(const SolverState<Exec>& s) const {
     SideMesh<Mem> m;
     m.x = s.collider_x; m.xs = s.collider_x_start; m.xo = s.collider_x_start; m.tris = collider_tris_; m.rmask = collider_rmask_;
-    m.neighbour = collider_nb_; m.uniform_thickness = collider_th_; m.uniform_friction = collider_fr_; m.collider = true;
+    m.neighbour = collider_nb_; m.thickness = collider_th_; m.friction = collider_fr_; m.dfriction = collider_fr_;
+    m.collider = true;
     return m;
   }
 
@@ -423,7 +427,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   View<uint8_t*> cloth_rmask_, collider_rmask_;
   View<real*> cloth_th_, cloth_fr_, cloth_dfr_, cloth_margin_, cloth_failsafe_margin_;
   View<int*> cloth_layer_;
-  real collider_th_ = 0, collider_fr_ = 1;
+  View<real*> collider_th_, collider_fr_, collider_margin_;  // per collider vertex, per collider triangle
   View<Aabb*> cloth_boxes_, collider_boxes_, swept_boxes_;  // swept_boxes_: proximity queries against colliders
   Lbvh<Exec> cloth_bvh_, collider_bvh_;
   View<IndexPair*> pairs_{"weft::pairs", 0}, collider_pairs_{"weft::collider_pairs", 0};

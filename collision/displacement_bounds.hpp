@@ -155,7 +155,7 @@ struct PairDistances {
     for (int k = 0; k < NB; ++k) fold(SB, pb[k], f);
   }
   KOKKOS_INLINE_FUNCTION real margin_of(const SideMesh<Mem>& S, int t) const {
-    return S.collider ? detect_scale * S.uniform_thickness : margin(t);
+    return S.collider ? detect_scale * narrow_detail::face_th(S, t) : margin(t);
   }
   // A static pair's CCD with separation 0 (narrow_detail::touching) can only find features already touching.
   KOKKOS_INLINE_FUNCTION static bool touches(real d) { return !(d > real(1e-9) * (1 + d)); }

@@ -20,16 +20,15 @@ struct SideMesh {
   Kokkos::View<const Vec3*, Mem> x, xs, xo;
   Kokkos::View<const int* [3], Mem> tris;
   Kokkos::View<const uint8_t*, Mem> rmask;       // representative features per triangle
-  Kokkos::View<const real*, Mem> thickness;      // per point (cloth) or empty (collider: `uniform`)
-  Kokkos::View<const real*, Mem> friction, dfriction;
+  Kokkos::View<const real*, Mem> thickness;      // per point (cloth) or per vertex (collider: its collider's)
+  Kokkos::View<const real*, Mem> friction, dfriction;  // a collider's friction scales both
   Kokkos::View<const int*, Mem> layer;
   Kokkos::View<const int* [3], Mem> neighbour;   // collider: triangle across each edge (-1 none)
-  real uniform_thickness = 0, uniform_friction = 1;
   bool collider = false;
 
-  KOKKOS_INLINE_FUNCTION real th(int v) const { return collider ? uniform_thickness : thickness(v); }
-  KOKKOS_INLINE_FUNCTION real fr(int v) const { return collider ? uniform_friction : friction(v); }
-  KOKKOS_INLINE_FUNCTION real dfr(int v) const { return collider ? uniform_friction : dfriction(v); }
+  KOKKOS_INLINE_FUNCTION real th(int v) const { return thickness(v); }
+  KOKKOS_INLINE_FUNCTION real fr(int v) const { return friction(v); }
+  KOKKOS_INLINE_FUNCTION real dfr(int v) const { return dfriction(v); }
   KOKKOS_INLINE_FUNCTION int ref(int v) const { return collider ? collider_ref(v) : v; }
   KOKKOS_INLINE_FUNCTION Vec3 face_normal(int t) const {
     const Vec3 a = x(tris(t, 0)), b = x(tris(t, 1)), c = x(tris(t, 2));

@@ -3,6 +3,7 @@
 #include <Kokkos_Core.hpp>
 #include <Kokkos_Graph.hpp>
 
+#include <cstdlib>
 #include <string>
 
 namespace weft::compat {
@@ -16,6 +17,9 @@ inline std::string kokkos_version_string() {
 
 // Initialise Kokkos with a host thread count (<= 0: Kokkos' default) and a CUDA device (< 0: default).
 inline void initialize(int num_threads, int device_id) {
+  // Unset, the OpenMP runtime binds no threads, which is what weft wants; Kokkos 4 would print four lines
+  // of advice on every run. Saying so explicitly keeps them away (a value the user set is kept).
+  ::setenv("OMP_PROC_BIND", "false", 0);
 #if KOKKOS_VERSION >= 40000
   Kokkos::InitializationSettings s;
   if (num_threads > 0) s.set_num_threads(num_threads);

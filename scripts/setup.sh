@@ -14,7 +14,7 @@ sudo_cmd() { if [ "$(id -u)" = 0 ]; then "$@"; elif command -v sudo >/dev/null; 
   echo "setup: need root to run: $*" >&2; exit 1; fi; }
 
 # ---- Debian packages -------------------------------------------------------------------------------------
-pkgs=(build-essential cmake ninja-build pkg-config dpkg-dev libeigen3-dev libhdf5-dev libcli11-dev
+pkgs=(build-essential cmake ninja-build pkg-config dpkg-dev libhdf5-dev libcli11-dev
       libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev libpng-dev zlib1g-dev libcairo2-dev ccache)
 missing=()
 for p in "${pkgs[@]}"; do dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p"); done

@@ -289,6 +289,25 @@ class Cli {
 
 const std::string kSheet = "run builtin:hanging-sheet --res 5 --substeps 4 --iterations 8";
 
+TEST(WEFT_TEST_SUITE, cli_global_options_go_before_or_after_the_subcommand) {
+  WEFT_NEED_CLI();
+  const CacheDir dir("cli_global_options");
+  // Without OMP_PROC_BIND in the environment, as a user's shell has it: no Kokkos advice is printed either.
+  const auto weft = [&](const std::string& args) {
+    const std::string log = dir.file("log");
+    std::system(("env -u OMP_PROC_BIND " + Cli::binary() + " " + args + " > '" + log + "' 2>&1").c_str());
+    std::ifstream in(log);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string run = "run builtin:hanging-sheet --res 4 --frames 1-3 --hash";
+  const std::string after = weft(run + " --backend serial --threads 1"), before = weft("--backend serial --threads 1 " + run);
+  EXPECT_NE(after.find("backend serial"), std::string::npos) << after;
+  EXPECT_EQ(after.substr(after.rfind("hash ")), before.substr(before.rfind("hash ")));
+  EXPECT_EQ(after.find("OMP_PROC_BIND"), std::string::npos) << after;
+  EXPECT_NE(weft("info --backend serial").find("selected backend: serial"), std::string::npos);
+  EXPECT_NE(weft(run + " --backend nonsense").find("unknown backend 'nonsense'"), std::string::npos);
+}
+
 TEST(WEFT_TEST_SUITE, cli_run_resume_gives_the_straight_runs_cache_and_hash) {
   WEFT_NEED_CLI();
   const CacheDir dir("cli_resume");

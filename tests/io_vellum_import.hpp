@@ -3,8 +3,10 @@
 #include "core/error.hpp"
 #include "io/houdini_geo.hpp"
 #include "io/obj.hpp"
+#include "io/scene_file.hpp"
 #include "io/vellum_import.hpp"
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -569,6 +571,37 @@ TEST(WEFT_TEST_SUITE, io_vellum_bad_constraints) {
   write_geo(g, b.file("constraints.geo"));
   e = b.error();
   EXPECT_TRUE(contains(e, b.file("constraints.geo") + ": no primitive attribute 'type'")) << e;
+}
+
+// weft import-vellum --collider-thickness / --collider-friction [NAME=]VALUE: every collider, or one by name.
+TEST(WEFT_TEST_SUITE, io_vellum_cli_sets_each_colliders_thickness_and_friction) {
+  TempDir dir("collider_values");
+  const Geometry sim = cloth_sim();
+  write_geo(sim, dir.file("cloth.geo"));
+  Geometry body;
+  body.points = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}};
+  body.primitives.resize(1);
+  body.primitives[0].points = {0, 1, 2};
+  write_geo(body, dir.file("body.geo"));
+  write_geo(body, dir.file("rock.geo"));
+  ConstraintGeo(sim).write(dir.file("constraints.geo"));
+  const auto weft = [&](const std::string& args) {
+    const std::string cmd = std::string(WEFT_BIN_DIR) + "/weft import-vellum " + dir.file("cloth.geo") + " " +
+                            dir.file("constraints.geo") + " --collider " + dir.file("body.geo") + " --collider " +
+                            dir.file("rock.geo") + " -o " + dir.file("s.h5") + " " + args + " > " + dir.file("log") + " 2>&1";
+    const int st = std::system(cmd.c_str());
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  };
+  if (!fs::exists(std::string(WEFT_BIN_DIR) + "/weft")) GTEST_SKIP() << "weft is not built";
+  ASSERT_EQ(weft("--collider-thickness 0.004 --collider-thickness rock=0.02 --collider-friction body=0.1"), 0);
+  const Scene s = read_scene(dir.file("s.h5"));
+  ASSERT_EQ(s.colliders.size(), 2u);
+  EXPECT_EQ(s.colliders[0].thickness, 0.004);
+  EXPECT_EQ(s.colliders[1].thickness, 0.02);
+  EXPECT_EQ(s.colliders[0].friction, 0.1);
+  EXPECT_EQ(s.colliders[1].friction, Collider{}.friction);
+  EXPECT_EQ(weft("--collider-thickness skin=0.01"), 2);
+  EXPECT_EQ(weft("--collider-thickness -1"), 2);
 }
 
 TEST(WEFT_TEST_SUITE, io_vellum_collider_frames) {
