@@ -17,7 +17,7 @@ namespace weft::cli {
 namespace {
 
 struct ImportOptions {
-  std::string sim, constraints, output, frames;
+  std::string sim, constraints, output, frames, pin_target;
   std::vector<std::string> colliders, collider_thickness, collider_friction;
   bool skip_unsupported = false;
   real fps = 0;
@@ -85,6 +85,7 @@ int import(const ImportOptions& o) {
   apply_collider_values(o.collider_friction, "--collider-friction", opt.colliders, &io::VellumCollider::friction);
   if (!o.frames.empty()) opt.frames = parse_frames(o.frames);
   opt.skip_unsupported = o.skip_unsupported;
+  opt.pin_target = o.pin_target;
   io::VellumImportReport report;
   Scene scene = io::import_vellum(o.sim, o.constraints, opt, &report);
   SolverSettings& st = scene.settings;
@@ -123,6 +124,9 @@ void add_import_vellum(CLI::App& app, const GlobalOptions&, Action& action) {
   cmd->add_option("--collider-friction", o->collider_friction,
                   "[NAME=]SCALE: friction of the collider NAME, or of every collider (default 0.5); repeatable")
       ->allow_extra_args(false);
+  cmd->add_option("--pin-target", o->pin_target,
+                  "FILE or frame pattern ('cloth_anim.$F4.bgeo'): the cloth animated, point for point; pintoanimation "
+                  "points follow it exactly and pin constraints are pulled to it");
   cmd->add_option("--frames", o->frames, "frame range A-B (A is the initial state; collider frames are read over it)");
   cmd->add_flag("--skip-unsupported", o->skip_unsupported,
                 "leave out (and list) constraint types weft cannot simulate");

@@ -5,6 +5,8 @@
 #include "constraints/triarap.hpp"
 #include "core/topology.hpp"
 
+#include <algorithm>
+
 namespace weft {
 
 int add_cloth_piece(Scene& s, const std::vector<Vec3>& x, const std::vector<std::array<int, 3>>& tris,
@@ -64,6 +66,32 @@ int add_cloth_piece(Scene& s, const std::vector<Vec3>& x, const std::vector<std:
                         bend_rest_angle(x[q[0]], x[q[1]], x[q[2]], x[q[3]]), bend});
   }
   return first;
+}
+
+int add_pin_targets(Scene& s, const Animation& track) {
+  Animation& a = s.pin_targets;
+  const int first = a.empty() ? 0 : int(a.frames[0].size());
+  if (track.empty()) return first;
+  const size_t frames = std::max(a.frames.size(), track.frames.size());
+  if (a.empty()) a.frames.resize(1);
+  while (a.frames.size() < frames) a.frames.push_back(a.frames.back());  // hold the last frame
+  for (size_t f = 0; f < frames; ++f) {
+    const auto& goals = track.frames[std::min(f, track.frames.size() - 1)];
+    a.frames[f].insert(a.frames[f].end(), goals.begin(), goals.end());
+  }
+  return first;
+}
+
+void pin_to_targets(Scene& s, const std::vector<int>& point, const std::vector<int>& target, bool hard,
+                    const XpbdMaterial& m) {
+  for (size_t i = 0; i < point.size(); ++i) {
+    if (hard) {
+      s.kinematic_point.push_back(point[i]);
+      s.kinematic_target.push_back(target[i]);
+    } else {
+      s.constraints.pin.push_back({point[i], s.points.position[size_t(point[i])], target[i], 0, m});
+    }
+  }
 }
 
 }  // namespace weft

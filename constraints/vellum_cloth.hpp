@@ -30,4 +30,14 @@ struct ClothMaterial {
 int add_cloth_piece(Scene& s, const std::vector<Vec3>& x, const std::vector<std::array<int, 3>>& tris,
                     const ClothMaterial& mat);
 
+// Appends animated goals to Scene::pin_targets: track.frames[f][k] is goal k at frame frame_start + f. The
+// shorter of the two animations holds its last frame, so sources of different lengths mix. Returns the
+// index of the track's first goal.
+int add_pin_targets(Scene& s, const Animation& track);
+
+// Pins points to animated goals as Vellum's pintoanimation does: point[i] follows goal target[i] of
+// Scene::pin_targets exactly (hard, kinematic), or is pulled to it by a pin constraint of material m (soft).
+void pin_to_targets(Scene& s, const std::vector<int>& point, const std::vector<int>& target, bool hard,
+                    const XpbdMaterial& m = {});
+
 }  // namespace weft

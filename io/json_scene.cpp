@@ -1,5 +1,6 @@
 #include "io/json_scene.hpp"
 
+#include "collision/ccd_proximity.hpp"
 #include "constraints/vellum_cloth.hpp"
 #include "core/error.hpp"
 #include "core/topology.hpp"
@@ -304,24 +305,118 @@ std::vector<int> pin_selection(const Node& pin, const Node& cloth, const Mesh& m
   return r;
 }
 
-void read_pins(const Node& cloth, const Mesh& m, int first, Scene& s) {
+// A pin to a collider's surface, resolved once the colliders are read.
+struct PendingAttach {
+  std::string collider;
+  std::string where;  // the JSON path, for errors
+  std::vector<int> points;
+  XpbdMaterial m;
+};
+
+void read_pins(const Node& cloth, const Mesh& m, int first, const std::string& json_path, Scene& s,
+               std::vector<PendingAttach>& attaches) {
   const Node pins = cloth["pins"];
   for (size_t j = 0; j < pins.size(); ++j) {
     const Node pin = pins.item(j);
-    pin.object({"points", "group", "box", "stiffness", "damping"});
+    pin.object({"points", "group", "box", "stiffness", "damping", "target", "attach"});
     const std::vector<int> sel = pin_selection(pin, cloth, m);
-    if (!pin.has("stiffness")) {
-      if (pin.has("damping")) pin["damping"].fail("only a soft pin (with 'stiffness') has damping");
-      for (int i : sel) s.points.stopped[size_t(first + i)] = 1;
+    const bool hard = !pin.has("stiffness");
+    if (hard && pin.has("damping")) pin["damping"].fail("only a soft pin (with 'stiffness') has damping");
+    if (pin.has("target") && pin.has("attach")) pin.fail("give at most one of 'target' and 'attach'");
+    // Hard: compliance 0; soft: 1/k.
+    const XpbdMaterial mat = hard ? XpbdMaterial{0, 0, 0}
+                                  : xpbd_material(pin["stiffness"].number(Range::Positive), -1,
+                                                  pin.number("damping", 0, Range::NonNegative));
+    std::vector<int> points;
+    for (int i : sel) points.push_back(first + i);
+    if (pin.has("attach")) {
+      attaches.push_back({pin["attach"].string(), pin["attach"].file() + ": " + "pins[" + std::to_string(j) + "].attach",
+                          points, mat});
       continue;
     }
-    const XpbdMaterial mat =
-        xpbd_material(pin["stiffness"].number(Range::Positive), -1, pin.number("damping", 0, Range::NonNegative));
-    for (int i : sel) s.constraints.pin.push_back({first + i, m.x[size_t(i)], -1, 0, mat});
+    if (pin.has("target")) {
+      // An animated copy of this piece (an OBJ or Houdini geometry, a $F sequence over the scene's frames):
+      // each selected point follows the point of the same number.
+      const Node t = pin["target"];
+      const std::string pattern = resolve(json_path, t.string());
+      const Collider track = reading_for(t, [&] {
+        return read_collider("pin target", pattern, s.settings.frame_start, s.settings.frame_end);
+      });
+      if (track.motion.frames[0].size() != m.x.size())
+        t.fail(pattern + " has " + std::to_string(track.motion.frames[0].size()) + " points, this cloth piece " +
+               std::to_string(m.x.size()) + " (targets are matched by point number)");
+      Animation goals;
+      for (const auto& frame : track.motion.frames) {
+        goals.frames.emplace_back();
+        for (int i : sel) goals.frames.back().push_back(frame[size_t(i)]);
+      }
+      const int k0 = add_pin_targets(s, goals);
+      std::vector<int> targets;
+      for (size_t k = 0; k < sel.size(); ++k) targets.push_back(k0 + int(k));
+      pin_to_targets(s, points, targets, hard, mat);
+      continue;
+    }
+    if (hard) {
+      for (int p : points) s.points.stopped[size_t(p)] = 1;
+    } else {
+      for (int p : points) s.constraints.pin.push_back({p, s.points.position[size_t(p)], -1, 0, mat});
+    }
   }
 }
 
-void read_cloth(const Node& n, const std::string& json_path, Scene& s) {
+// Each attached point holds its place on the collider: the nearest point of the collider's first frame, at
+// the distance it starts from.
+void resolve_attach(const PendingAttach& a, Scene& s) {
+  int col = -1;
+  std::string names;
+  for (size_t k = 0; k < s.colliders.size(); ++k) {
+    if (s.colliders[k].name == a.collider) col = int(k);
+    names += (names.empty() ? "" : ", ") + s.colliders[k].name;
+  }
+  if (col < 0) throw InputError(a.where + ": no collider named '" + a.collider + "' (colliders: " + (names.empty() ? "none" : names) + ")");
+  const Collider& c = s.colliders[size_t(col)];
+  const std::vector<Vec3>& x = c.motion.frames[0];
+  for (int p : a.points) {
+    const Vec3 q = s.points.position[size_t(p)];
+    real best = -1;
+    AttachConstraint t{p, col, -1, 0, 0, 0, a.m};
+    for (size_t k = 0; k < c.triangles.size(); ++k) {
+      const auto& tri = c.triangles[k];
+      real w0, w1, w2;
+      const real d2 = point_triangle_distance2(q, x[size_t(tri[0])], x[size_t(tri[1])], x[size_t(tri[2])], w0, w1, w2);
+      if (best < 0 || d2 < best) {
+        best = d2;
+        t.tri = int(k);
+        t.u = w1;
+        t.v = w2;
+      }
+    }
+    t.rest = std::sqrt(best);
+    s.constraints.attach.push_back(t);
+  }
+}
+
+// Stitches between points of any pieces: {"a": [piece, point], "b": [piece, point]}, sewn to `rest` (0).
+void read_stitches(const Node& n, const std::vector<int>& piece_first, const std::vector<int>& piece_size, Scene& s) {
+  for (size_t k = 0; k < n.size(); ++k) {
+    const Node st = n.item(k);
+    st.object({"a", "b", "stiffness", "damping", "rest"});
+    int ends[2];
+    for (int e = 0; e < 2; ++e) {
+      const Node end = st[e == 0 ? "a" : "b"];
+      if (end.size() != 2) end.fail("expected [piece, point]");
+      const int piece = end.item(0).integer(0, int(piece_first.size()) - 1);
+      ends[e] = piece_first[size_t(piece)] + end.item(1).integer(0, piece_size[size_t(piece)] - 1);
+    }
+    if (ends[0] == ends[1]) st.fail("a stitch joins two different points");
+    const real k_st = st.number("stiffness", 1e10, Range::Positive);
+    const XpbdMaterial mat = xpbd_material(k_st, -1, st.number("damping", 0, Range::NonNegative));
+    s.constraints.distance.push_back({ends[0], ends[1], st.number("rest", 0, Range::NonNegative), mat});
+  }
+}
+
+void read_cloth(const Node& n, const std::string& json_path, Scene& s, std::vector<PendingAttach>& attaches,
+                std::vector<int>& piece_first, std::vector<int>& piece_size) {
   const bool obj = n.has("obj");
   if (obj == n.has("generator")) n.fail("give exactly one of 'obj' and 'generator'");
   Mesh m;
@@ -343,7 +438,9 @@ void read_cloth(const Node& n, const std::string& json_path, Scene& s) {
     }
   }
   const int first = add_cloth_piece(s, m.x, m.tris, mat);
-  if (n.has("pins")) read_pins(n, m, first, s);
+  piece_first.push_back(first);
+  piece_size.push_back(int(m.x.size()));
+  if (n.has("pins")) read_pins(n, m, first, json_path, s, attaches);
 }
 
 Mesh read_collider_generator(const Node& n, const std::string& g) {
@@ -405,7 +502,7 @@ Collider read_collider_entry(const Node& n, size_t index, const std::string& jso
 Scene read_json_scene(const std::string& path) {
   const json j = parse_file(path);
   const Node root(path, j, "");
-  root.object({"builtin", "res", "settings", "cloth", "colliders"});
+  root.object({"builtin", "res", "settings", "cloth", "colliders", "stitches"});
   Scene s;
   if (root.has("builtin")) {
     const Node b = root["builtin"];
@@ -416,10 +513,13 @@ Scene read_json_scene(const std::string& path) {
   }
   s.name = path;
   if (root.has("settings")) read_settings(root["settings"], s);
+  std::vector<PendingAttach> attaches;
+  std::vector<int> piece_first, piece_size;
   if (root.has("cloth")) {
     const Node cloth = root["cloth"];
-    for (size_t i = 0; i < cloth.size(); ++i) read_cloth(cloth.item(i), path, s);
+    for (size_t i = 0; i < cloth.size(); ++i) read_cloth(cloth.item(i), path, s, attaches, piece_first, piece_size);
   }
+  if (root.has("stitches")) read_stitches(root["stitches"], piece_first, piece_size, s);
   if (root.has("colliders")) {
     const Node colliders = root["colliders"];
     for (size_t k = 0; k < colliders.size(); ++k)
@@ -427,6 +527,7 @@ Scene read_json_scene(const std::string& path) {
     const bool told = root.has("settings") && root["settings"].has("collisions");
     if (!told && colliders.size() > 0) s.needs_collisions = true;
   }
+  for (const PendingAttach& a : attaches) resolve_attach(a, s);
   validate_scene(s);
   return s;
 }

@@ -195,6 +195,7 @@ class Importer {
                        std::to_string(s_.settings.frame_end) + " ends before it starts");
     read_colliders();
     read_constraints();
+    if (!opt_.pin_target.empty()) follow_pin_target();
     refuse_unsupported();
     s_.needs_collisions = !s_.colliders.empty();
     validate_scene(s_);
@@ -260,6 +261,32 @@ class Importer {
     return x;
   }
 
+  // --pin-target: the cloth's animated target (Vellum's animated rest input), matched by point number.
+  // pintoanimation points follow it exactly; pin constraints are pulled to it (Vellum's Match Animation).
+  void follow_pin_target() {
+    const Collider track = load_collider("pin target", opt_.pin_target, s_.settings.frame_start,
+                                         s_.settings.frame_end).collider;
+    const size_t n = s_.points.size();
+    if (track.motion.frames[0].size() != n)
+      throw InputError(opt_.pin_target + ": the pin target has " + str(track.motion.frames[0].size()) +
+                       " points, the simulation geometry " + sim_path_ + " " + str(n) +
+                       " (targets are matched by point number)");
+    // Goals: the kinematic points' first, in their order (kinematic_target[k] == k), then one per pin.
+    Animation goals;
+    for (const auto& frame : track.motion.frames) {
+      goals.frames.emplace_back();
+      for (int k : s_.kinematic_point) goals.frames.back().push_back(frame[size_t(k)]);
+      for (size_t k : pin_rows_) goals.frames.back().push_back(frame[size_t(s_.constraints.pin[k].p)]);
+    }
+    s_.pin_targets = Animation{};
+    add_pin_targets(s_, goals);
+    int next = int(s_.kinematic_point.size());
+    for (size_t k : pin_rows_) s_.constraints.pin[k].target = next++;
+    rep_.notes.push_back("pins following " + opt_.pin_target + " (" + str(track.motion.frames.size()) +
+                         " frames): " + str(s_.kinematic_point.size()) + " pintoanimation points exactly, " +
+                         str(pin_rows_.size()) + " pin constraints");
+  }
+
   void read_points() {
     const auto& at = sim_.point_attributes;
     const auto attr = [&](const char* name, int size = 1) { return numeric(at, sim_path_, "point", name, size); };
@@ -290,8 +317,9 @@ class Importer {
     if (!s_.kinematic_point.empty()) {
       s_.pin_targets.frames.emplace_back();
       for (int k : s_.kinematic_point) s_.pin_targets.frames[0].push_back(p.position[size_t(k)]);
-      rep_.notes.push_back("points with pintoanimation: " + str(s_.kinematic_point.size()) +
-                           "; they hold their imported positions (no animated target is imported)");
+      if (opt_.pin_target.empty())
+        rep_.notes.push_back("points with pintoanimation: " + str(s_.kinematic_point.size()) +
+                             "; they hold their imported positions (no --pin-target animation given)");
     }
     count_unsupported_points("weld", [](double w) { return w >= 0; });
     count_unsupported_points("disableself", [](double d) { return d != 0; });
@@ -533,6 +561,7 @@ class Importer {
           goal = {restvector(0), restvector(1), restvector(2)};
         }
         c.pin.push_back({p[0], goal, -1, rest, m});
+        pin_rows_.push_back(c.pin.size() - 1);
         break;
       }
       case Kind::Attach: read_attach(i, a, p[0], rest, m, where); break;
@@ -632,6 +661,7 @@ class Importer {
   Scene s_;
   std::vector<ColliderMesh> collider_meshes_;
   std::map<std::string, size_t> fixed_attach_;
+  std::vector<size_t> pin_rows_;  // the pin constraints of type "pin" (not attach constraints turned pins)
 };
 
 }  // namespace

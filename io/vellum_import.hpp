@@ -32,6 +32,10 @@ struct VellumImportOptions {
   std::vector<VellumCollider> colliders;
   std::optional<std::array<int, 2>> frames;  // first, last; else the detail attributes', else the defaults
   bool skip_unsupported = false;             // import without what weft cannot simulate, instead of refusing
+  // The cloth's animated target (a .geo/.bgeo/.obj, or a $F sequence over the frames) with the simulation
+  // geometry's points: pintoanimation points follow it exactly, pin constraints are pulled to it. "": they
+  // hold their imported positions.
+  std::string pin_target;
 };
 
 // What an import did, for the user: counts per Vellum constraint type, and everything that was not imported

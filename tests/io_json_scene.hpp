@@ -242,7 +242,7 @@ TEST(WEFT_TEST_SUITE, io_json_errors_name_file_and_path) {
   const Case cases[] = {
       {R"({"cloth": [)", ": parse error at line 1, column 12"},
       {"[1, 2]", ": top level: expected an object"},
-      {R"({"clothes": []})", ": clothes: unknown key (known here: builtin, res, settings, cloth, colliders)"},
+      {R"({"clothes": []})", ": clothes: unknown key (known here: builtin, res, settings, cloth, colliders, stitches)"},
       {R"({"res": 3})", ": res: 'res' sets the resolution of a 'builtin' base scene"},
       {R"({"builtin": "nope"})", ": builtin: unknown built-in scene 'nope'"},
       {R"({"settings": {"substeps": 0}})", ": settings.substeps: expected an integer in 1.."},

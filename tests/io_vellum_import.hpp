@@ -573,6 +573,50 @@ TEST(WEFT_TEST_SUITE, io_vellum_bad_constraints) {
   EXPECT_TRUE(contains(e, b.file("constraints.geo") + ": no primitive attribute 'type'")) << e;
 }
 
+// --pin-target: pintoanimation points follow the animated cloth exactly, pin constraints are pulled to it.
+TEST(WEFT_TEST_SUITE, io_vellum_pins_follow_the_pin_target_animation) {
+  TempDir dir("pin_target");
+  const Geometry sim = cloth_sim();  // point 6 has pintoanimation
+  write_geo(sim, dir.file("cloth.geo"));
+  ConstraintGeo(sim).add("pin", {2}, 1e4).write(dir.file("constraints.geo"));
+  for (int f = 1; f <= 3; ++f) {
+    Geometry moved = sim;
+    for (Vec3& p : moved.points) p = p + Vec3{0.1 * (f - 1), 0, 0};
+    char name[32];
+    std::snprintf(name, sizeof name, "anim.%04d.geo", f);
+    write_geo(moved, dir.file(name));
+  }
+  VellumImportOptions opt;
+  opt.frames = std::array<int, 2>{1, 3};
+  opt.pin_target = dir.file("anim.$F4.geo");
+  VellumImportReport rep;
+  const Scene s = import_vellum(dir.file("cloth.geo"), dir.file("constraints.geo"), opt, &rep);
+  ASSERT_EQ(s.kinematic_point, std::vector<int>{6});
+  ASSERT_EQ(s.constraints.pin.size(), 1u);
+  ASSERT_EQ(s.pin_targets.frames.size(), 3u);
+  const int k = s.kinematic_target[0], pk = s.constraints.pin[0].target;
+  ASSERT_GE(pk, 0);
+  for (int f = 0; f < 3; ++f) {
+    // (.geo stores 32-bit floats)
+    EXPECT_LT(norm(s.pin_targets.frames[size_t(f)][size_t(k)] - (sim.points[6] + Vec3{0.1 * f, 0, 0})), 1e-6) << f;
+    EXPECT_LT(norm(s.pin_targets.frames[size_t(f)][size_t(pk)] - (sim.points[2] + Vec3{0.1 * f, 0, 0})), 1e-6) << f;
+  }
+  EXPECT_TRUE(contains(rep.notes.back(), "1 pintoanimation points exactly, 1 pin constraints")) << rep.notes.back();
+  // A target with other points is refused, naming both files.
+  Geometry fewer = sim;
+  fewer.points.pop_back();
+  fewer.primitives.pop_back();
+  for (auto& [name, a] : fewer.point_attributes) {
+    if (!a.floats.empty()) a.floats.resize(a.floats.size() - size_t(a.size));
+    if (!a.ints.empty()) a.ints.resize(a.ints.size() - size_t(a.size));
+  }
+  write_geo(fewer, dir.file("fewer.geo"));
+  opt.pin_target = dir.file("fewer.geo");
+  const std::string e = input_error([&] { import_vellum(dir.file("cloth.geo"), dir.file("constraints.geo"), opt); });
+  EXPECT_TRUE(contains(e, dir.file("fewer.geo") + ": the pin target has 8 points, the simulation geometry " +
+                              dir.file("cloth.geo") + " 9")) << e;
+}
+
 // weft import-vellum --collider-thickness / --collider-friction [NAME=]VALUE: every collider, or one by name.
 TEST(WEFT_TEST_SUITE, io_vellum_cli_sets_each_colliders_thickness_and_friction) {
   TempDir dir("collider_values");
