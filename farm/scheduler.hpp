@@ -23,8 +23,8 @@ std::string slurm_script(const Batch& b);
 Submission submit_slurm(const Batch& b);
 
 // The queue's view of the array: array index -> state (PENDING, RUNNING, COMPLETED, FAILED, ...), from
-// `squeue -r -t all`. Tasks the controller has forgotten (MinJobAge after they ended) are absent. Throws
-// SchedulerError when squeue fails.
+// `squeue -r -t all`, and from `sacct` for tasks the controller has forgotten (MinJobAge after they ended)
+// where accounting is kept; otherwise those are absent. Throws SchedulerError when squeue fails.
 std::map<int, std::string> slurm_states(const std::string& job);
 // A state of a task that has not ended yet (PENDING, RUNNING, COMPLETING, REQUEUED, SUSPENDED, ...).
 bool slurm_active(const std::string& state);

@@ -116,6 +116,23 @@ std::map<int, std::string> slurm_states(const std::string& job) {
     } catch (const std::exception&) {  // "N/A": not an array task
     }
   }
+  // Tasks the controller has forgotten: the accounting database remembers them where there is one (sacct
+  // fails with "accounting storage is disabled" where there is not, and is then not asked).
+  if (on_path("sacct")) {
+    const ProcessResult a = run_process({"sacct", "-n", "-P", "-X", "-j", job, "-o", "JobID,State"}, 60);
+    std::istringstream rows(a.exit_code == 0 ? a.output : "");
+    while (std::getline(rows, line)) {  // "1234_5|COMPLETED", "1234_5|CANCELLED by 0"
+      const size_t under = line.find('_'), bar = line.find('|');
+      if (under == std::string::npos || bar == std::string::npos || bar < under) continue;
+      try {
+        const int task = std::stoi(line.substr(under + 1, bar - under - 1));
+        std::string state = trimmed(line.substr(bar + 1));
+        state = state.substr(0, state.find(' '));
+        states.emplace(task, state);  // squeue's view wins
+      } catch (const std::exception&) {  // "1234_[0-3]": pending, not expanded
+      }
+    }
+  }
   return states;
 }
 
