@@ -6,6 +6,7 @@
 #include "backends/simulation.hpp"
 #include "core/hash.hpp"
 #include "io/cache_file.hpp"
+#include "io/geo_writeback.hpp"
 #include "io/scene_file.hpp"
 #include "io/scene_overrides.hpp"
 #include "io/scene_source.hpp"
@@ -56,6 +57,8 @@ std::string resume_command(const RunOptions& o) {
   num("--collision-passes", o.collision_passes, -1);
   num("--smoothing", o.smoothing, -1);
   opt("--geo-sequence", o.geo_dir);
+  opt("--like", o.like);
+  opt("--geo-format", o.geo_format);
   if (o.hash) c += " --hash";
   if (o.clean) c += " --clean";
   if (o.no_impact_zones) c += " --no-impact-zones";
@@ -166,6 +169,16 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   apply_contact_solver(o.contact_solver, st.jacobi_contacts);
   apply_ccd_span(o.ccd_span, st.ccd_per_pass);
   apply_tethers(o.tethers, st.tether_stretch);
+  std::unique_ptr<io::GeoFrameWriter> geo;  // --geo-sequence; a --like file is checked before anything is written
+  try {
+    if (!o.geo_dir.empty())
+      geo = std::make_unique<io::GeoFrameWriter>(o.geo_format, o.like, scene.points.size(), scene.triangles,
+                                                 "the scene " + scene.name);
+  } catch (const std::exception& e) {
+    throw Error(e.what(), 2);
+  }
+  if (geo)
+    for (const std::string& w : geo->warnings()) std::cerr << "weft: warning: " << w << "\n";
   warn_about_thickness(scene);
   if (o.clean) {  // the solvability check (docs/solvability.md) replaces the colliders by cleaned ones
     const BodyCleaning c = clean_body(b, scene);
@@ -184,9 +197,9 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   const std::string stem = io::frame_file_stem(scene.name);
   std::unique_ptr<io::CacheWriter> cache;
   const auto write_frame = [&](const FrameStats& fs) {
-    if (!cache && o.geo_dir.empty()) return;
+    if (!cache && !geo) return;
     const std::vector<Vec3> x = sim->positions(), v = sim->velocities();
-    if (!o.geo_dir.empty()) io::write_frame_geo(io::frame_file(o.geo_dir, stem, fs.frame, "geo"), scene.triangles, x, v);
+    if (geo) geo->write(io::frame_file(o.geo_dir, stem, fs.frame, geo->extension()), x, v);
     if (cache) cache->append(fs, x, v);
   };
   const auto make_geo_dir = [&] {
@@ -280,7 +293,16 @@ void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_flag("--hash", o->hash, "print 'hash <16 hex digits>' of every frame's positions as the last line");
   cmd->add_flag("--quiet", o->quiet, "no per-frame lines");
   cmd->add_option("-o,--output", o->output, "HDF5 cache written frame by frame (readable while the run goes on)");
-  cmd->add_option("--geo-sequence", o->geo_dir, "also write each frame as DIR/<scene>.$F4.geo (P and v)");
+  auto* geo_sequence =
+      cmd->add_option("--geo-sequence", o->geo_dir, "also write each frame as DIR/<scene>.$F4.geo or .bgeo (P and v)");
+  cmd->add_option("--like", o->like,
+                  "the cloth's simulation geometry (the .geo/.bgeo given to import-vellum): each --geo-sequence frame "
+                  "is a copy of it, quads, UVs, groups and attributes kept, with the frame's P and v")
+      ->needs(geo_sequence);
+  cmd->add_option("--geo-format", o->geo_format,
+                  "geo or bgeo for --geo-sequence (default: the --like file's kind, else geo)")
+      ->check(CLI::IsMember({"geo", "bgeo"}))
+      ->needs(geo_sequence);
   cmd->add_flag("--clean", o->clean, "clean the body colliders first (the solvability check of weft check)");
   cmd->add_flag("--resume", o->resume,
                 "continue the -o cache from its last frame (same scene and settings; --frames may extend it)");

@@ -23,6 +23,7 @@ struct RunOptions {
   std::vector<std::string> set;  // "name=value" settings (io/scene_overrides.hpp), applied after --schedule
   bool hash = false, quiet = false;
   std::string output, geo_dir;
+  std::string like, geo_format;  // with geo_dir: frames as copies of `like`; "geo" | "bgeo" | "" (like's kind)
   bool resume = false;
   bool clean = false;  // run the solvability check on the colliders first
 };

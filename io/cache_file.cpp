@@ -2,7 +2,6 @@
 
 #include "core/hash.hpp"
 #include "io/hdf5_util.hpp"
-#include "io/houdini_geo.hpp"
 #include "io/obj.hpp"
 #include "io/scene_file.hpp"
 
@@ -309,15 +308,6 @@ std::string frame_file_stem(const std::string& scene_name) {
 
 std::string frame_file(const std::string& dir, const std::string& stem, int frame, const std::string& ext) {
   return (std::filesystem::path(dir) / expand_frame_pattern(stem + ".$F4." + ext, frame, frame)[0]).string();
-}
-
-void write_frame_geo(const std::string& path, const std::vector<std::array<int, 3>>& triangles,
-                     const std::vector<Vec3>& positions, const std::vector<Vec3>& velocities) {
-  Geometry g = from_trimesh(TriMesh{positions, triangles});
-  Attribute v = float_attribute(3, std::vector<double>(flat(velocities), flat(velocities) + 3 * velocities.size()));
-  v.qualifier = "vector";
-  g.point_attributes["v"] = std::move(v);
-  write_geo(g, path);
 }
 
 void write_frame_obj(const std::string& path, const std::vector<std::array<int, 3>>& triangles,

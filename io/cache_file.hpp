@@ -1,6 +1,6 @@
 // Caches (HDF5, layout in docs/formats.md): a run's frames, written as they are computed and readable while
-// the run goes on (single-writer / multiple-reader), positions and velocities stored exactly; and the
-// per-frame files (Houdini .geo, OBJ) that `weft run --geo-sequence` and `weft export` make of them.
+// the run goes on (single-writer / multiple-reader), positions and velocities stored exactly; and the names
+// of per-frame files, and OBJ frames, that `weft export` makes of them.
 #pragma once
 #include "core/frame_stats.hpp"
 #include "core/scene.hpp"
@@ -88,10 +88,7 @@ uint64_t cache_hash(const CacheReader& cache, int frames = -1);
 // builtin: prefix, folders or extension ("builtin:hanging-sheet" -> "hanging-sheet").
 std::string frame_file_stem(const std::string& scene_name);
 std::string frame_file(const std::string& dir, const std::string& stem, int frame, const std::string& ext);
-// One cloth frame, written atomically: a Houdini .geo with P and point velocities v (32-bit floats, as
-// Houdini keeps them; the cache has the exact values), or an OBJ with exact positions.
-void write_frame_geo(const std::string& path, const std::vector<std::array<int, 3>>& triangles,
-                     const std::vector<Vec3>& positions, const std::vector<Vec3>& velocities);
+// One cloth frame as an OBJ with exact positions, written atomically. (Houdini frames: io/geo_writeback.hpp.)
 void write_frame_obj(const std::string& path, const std::vector<std::array<int, 3>>& triangles,
                      const std::vector<Vec3>& positions);
 

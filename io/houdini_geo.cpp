@@ -66,9 +66,18 @@ class GeoReader {
     for (auto& [name, attr] : g.vertex_attributes) attr = reordered(attr, vertex_order);
     positions(g, npoints);
 
-    for (const char* key : {"pointgroups", "primitivegroups", "vertexgroups", "edgegroups"})
-      if (const json* groups = find(top, key); groups && groups->is_array() && !groups->empty())
-        g.warnings.push_back(std::string(key) + ": " + str(groups->size()) + " groups not read");
+    if (const json* list = find(top, "pointgroups")) groups(*list, npoints, "point", g.point_groups, g.warnings);
+    if (const json* list = find(top, "primitivegroups"))
+      groups(*list, nprimitives, "primitive", g.primitive_groups, g.warnings);
+    if (const json* list = find(top, "vertexgroups")) groups(*list, nvertices, "vertex", g.vertex_groups, g.warnings);
+    for (auto& [name, members] : g.vertex_groups) {  // into primitive order, as vertex attributes
+      std::vector<bool> ordered;
+      ordered.reserve(vertex_order.size());
+      for (const int v : vertex_order) ordered.push_back(members[size_t(v)]);
+      members = std::move(ordered);
+    }
+    if (const json* groups = find(top, "edgegroups"); groups && groups->is_array() && !groups->empty())
+      g.warnings.push_back("edgegroups: " + str(groups->size()) + " groups not read");
     std::map<std::string, size_t> opaque;
     for (const Primitive& p : g.primitives)
       if (p.kind == PrimKind::Other) ++opaque[p.type_name];
@@ -335,6 +344,62 @@ class GeoReader {
     }
   }
 
+  // ---- groups
+
+  bool flag(const json& v, const std::string& where) const {
+    return v.is_boolean() ? v.get<bool>() : integer(v, where, "a membership flag") != 0;
+  }
+
+  // [[name], [selection, [unordered, [boolRLE | i8, [...]]]]], or an ordered list of element numbers.
+  void groups(const json& list, size_t count, const std::string& cls, GroupMap& out,
+              std::vector<std::string>& warnings) const {
+    const std::string elements = cls == "vertex" ? "vertices" : cls + "s";
+    const json& entries = array(list, cls + " groups", "the list");
+    for (size_t i = 0; i < entries.size(); ++i) {
+      std::string where = cls + " group " + str(i);
+      const json& entry = entries[i];
+      if (!entry.is_array() || entry.size() != 2) fail(where, "expected [definition, selection]");
+      const std::string name = text(need(fields(entry[0], where), where, "name"), where, "name");
+      where = cls + " group '" + name + "'";
+      const Fields selection = fields(need(fields(entry[1], where), where, "selection"), where);
+      std::vector<bool> members(count, false);
+      if (const json* unordered = find(selection, "unordered")) {
+        const Fields encoding = fields(*unordered, where);
+        if (const json* r = find(encoding, "boolRLE")) {  // (count, value) pairs
+          const json& runs = array(*r, where, "boolRLE");
+          if (runs.size() % 2 != 0) fail(where, "boolRLE is not a list of (count, value) pairs");
+          size_t at = 0;
+          for (size_t k = 0; k < runs.size(); k += 2) {
+            const int64_t n = integer(runs[k], where, "a boolRLE count");
+            if (n < 0 || uint64_t(n) > count - at)
+              fail(where, "boolRLE describes more than the " + str(count) + " " + elements);
+            std::fill_n(members.begin() + std::ptrdiff_t(at), size_t(n), flag(runs[k + 1], where));
+            at += size_t(n);
+          }
+          if (at != count) fail(where, "boolRLE describes " + str(at) + " " + elements + ", there are " + str(count));
+        } else if (const json* b = find(encoding, "i8")) {  // one flag per element
+          const json& bits = array(*b, where, "i8");
+          if (bits.size() != count)
+            fail(where, "i8 holds " + str(bits.size()) + " flags, there are " + str(count) + " " + elements);
+          for (size_t k = 0; k < count; ++k) members[k] = flag(bits[k], where);
+        } else {
+          fail(where, "unordered selection in an unknown encoding (expected boolRLE or i8)");
+        }
+      } else if (const json* ordered = find(selection, "ordered")) {
+        for (const json& x : array(*ordered, where, "ordered")) {
+          const int64_t e = integer(x, where, "an element number");
+          if (e < 0 || uint64_t(e) >= count)
+            fail(where, "element " + std::to_string(e) + " is out of range, there are " + str(count) + " " + elements);
+          members[size_t(e)] = true;
+        }
+        warnings.push_back(where + ": ordered; read as plain membership (its order is not kept)");
+      } else {
+        fail(where, "the selection is neither unordered nor ordered");
+      }
+      out[name] = std::move(members);
+    }
+  }
+
   static Attribute reordered(const Attribute& a, const std::vector<int>& order) {
     Attribute r = a;
     const size_t k = size_t(a.size);
@@ -582,6 +647,9 @@ class GeoWriter {
     check(g_.vertex_attributes, g_.vertex_count(), "vertex");
     check(g_.primitive_attributes, g_.primitives.size(), "primitive");
     check(g_.detail_attributes, 1, "detail");
+    check_groups(g_.point_groups, g_.points.size(), "point");
+    check_groups(g_.vertex_groups, g_.vertex_count(), "vertex");
+    check_groups(g_.primitive_groups, g_.primitives.size(), "primitive");
   }
 
   void emit(JsonWriter& w) const {
@@ -638,6 +706,9 @@ class GeoWriter {
       i = end;
     }
     w.end_array();
+    groups(w, "pointgroups", g_.point_groups);
+    groups(w, "primitivegroups", g_.primitive_groups);
+    groups(w, "vertexgroups", g_.vertex_groups);
     w.end_array();
   }
 
@@ -646,14 +717,25 @@ class GeoWriter {
     throw FormatError(path_ + ": " + where + ": " + what);
   }
 
+  static bool identifier(const std::string& name) {
+    return !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
+           std::all_of(name.begin(), name.end(),
+                       [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  }
+
+  void check_groups(const GroupMap& groups, size_t count, const std::string& cls) const {
+    for (const auto& [name, members] : groups) {
+      const std::string where = cls + " group '" + name + "'";
+      if (!identifier(name)) fail(where, "is not a valid group name");
+      if (members.size() != count)
+        fail(where, "holds " + str(members.size()) + " flags, expected " + str(count) + " (one per " + cls + ")");
+    }
+  }
+
   void check(const AttributeMap& attrs, size_t count, const std::string& cls) const {
     for (const auto& [name, a] : attrs) {
       const std::string where = cls + " attribute '" + name + "'";
-      const bool identifier = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
-                              std::all_of(name.begin(), name.end(), [](char c) {
-                                return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-                              });
-      if (!identifier) fail(where, "is not a valid attribute name");
+      if (!identifier(name)) fail(where, "is not a valid attribute name");
       if (a.size < 1) fail(where, "tuple size " + std::to_string(a.size) + " is not positive");
       const size_t held = is_float(a.storage) ? a.floats.size() : is_int(a.storage) ? a.ints.size() : a.strings.size();
       if (held != count * size_t(a.size))
@@ -762,6 +844,40 @@ class GeoWriter {
     key(w, name);
     w.begin_array();
     for (const auto& [n, a] : attrs) attribute(w, n, a);
+    w.end_array();
+  }
+
+  // As Houdini writes them: the name, then the membership run-length coded as (count, value) pairs.
+  static void groups(JsonWriter& w, const char* name, const GroupMap& groups) {
+    if (groups.empty()) return;
+    key(w, name);
+    w.begin_array();
+    for (const auto& [n, members] : groups) {
+      w.begin_array();
+      w.begin_array();
+      key(w, "name");
+      w.string(n);
+      w.end_array();
+      w.begin_array();
+      key(w, "selection");
+      w.begin_array();
+      key(w, "unordered");
+      w.begin_array();
+      key(w, "boolRLE");
+      w.begin_array();
+      for (size_t i = 0; i < members.size();) {
+        size_t j = i;
+        while (j < members.size() && members[j] == members[i]) ++j;
+        w.integer(int64_t(j - i));
+        w.boolean(members[i]);
+        i = j;
+      }
+      w.end_array();
+      w.end_array();
+      w.end_array();
+      w.end_array();
+      w.end_array();
+    }
     w.end_array();
   }
 
@@ -888,6 +1004,8 @@ Geometry read_geo(const std::string& path) {
   }
   return GeoReader(path).read(root);
 }
+
+void check_writable(const Geometry& geometry, const std::string& path) { GeoWriter(geometry, path).validate(); }
 
 void write_geo(const Geometry& geometry, const std::string& path) { write(geometry, path, JsonWriter::Format::Text); }
 void write_bgeo(const Geometry& geometry, const std::string& path) {

@@ -1,4 +1,4 @@
-// Houdini geometry: the model Vellum assets need (points, primitives, attributes on every element class),
+// Houdini geometry: the model Vellum assets need (points, primitives, attributes on every element class, groups),
 // reading .geo (JSON text) and .bgeo (binary JSON) files, writing both, and triangulation for the solver.
 #pragma once
 #include "io/trimesh.hpp"
@@ -47,7 +47,11 @@ struct Primitive {
   std::array<double, 9> transform{1, 0, 0, 0, 1, 0, 0, 0, 1};  // Sphere: 3x3 shape about its point
 };
 
-// Vertices are numbered through the primitives in order; vertex attributes hold one element per vertex.
+// Named groups: whether each element belongs, one entry per element (point, vertex or primitive).
+using GroupMap = std::map<std::string, std::vector<bool>>;
+
+// Vertices are numbered through the primitives in order; vertex attributes and groups hold one element per
+// vertex in that order.
 struct Geometry {
   std::vector<Vec3> points;                     // P
   Storage position_storage = Storage::Float32;  // how P is stored in files
@@ -56,6 +60,7 @@ struct Geometry {
   std::vector<Primitive> primitives;
   AttributeMap primitive_attributes;
   AttributeMap detail_attributes;     // one element
+  GroupMap point_groups, vertex_groups, primitive_groups;  // ordered groups read as plain membership
   std::vector<std::string> warnings;  // what reading skipped or kept opaque; never written
 
   size_t vertex_count() const;
@@ -66,9 +71,11 @@ struct Geometry {
 Geometry read_geo(const std::string& path);
 
 // Writes ASCII .geo / binary .bgeo that Houdini loads, atomically. Geometry the format cannot hold (an Other
-// primitive, an index or attribute size that does not match, a non-finite value) throws FormatError first.
+// primitive, an index, attribute or group size that does not match, a non-finite value) throws FormatError
+// first; check_writable throws the same error without writing (`path` only names the file in the message).
 void write_geo(const Geometry& geometry, const std::string& path);
 void write_bgeo(const Geometry& geometry, const std::string& path);
+void check_writable(const Geometry& geometry, const std::string& path);
 
 // Closed polygons fanned into triangles, turned counter-clockwise (Houdini's polygons run clockwise seen
 // from the front), with the primitive each came from so results can be written back per primitive.

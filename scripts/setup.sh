@@ -37,6 +37,19 @@ else
   say "could not install $py_mods with pip: the report-script test will skip"
 fi
 
+# ---- OpenUSD for `weft export --format usd` (optional) ------------------------------------------------------
+# PyPI's C++ development wheels of OpenUSD's Sdf (pxr-sdf-dev pulls pxr-tf-dev, pxr-vt-dev, ... and pxr-tbb-dev),
+# which cmake/WeftUsd.cmake finds in python3's site-packages, and usd-core, OpenUSD's Python, with which
+# tests/usd_export.py reads the files back. Failing here only means a weft without USD export.
+usd_pkgs="pxr-sdf-dev==26.8 usd-core"
+if python3 -c "import importlib.metadata as m; [m.version(p) for p in ('pxr-sdf-dev', 'usd-core')]" 2>/dev/null; then
+  say "OpenUSD wheels already installed (pxr-sdf-dev, usd-core)"
+elif python3 -m pip install --quiet $usd_pkgs >/dev/null 2>&1; then
+  say "installed OpenUSD wheels ($usd_pkgs): weft export --format usd"
+else
+  say "could not install $usd_pkgs with pip: weft builds without USD export"
+fi
+
 # ---- Kokkos ------------------------------------------------------------------------------------------------
 if [ -n "${Kokkos_ROOT:-}" ]; then
   say "using the installed Kokkos at Kokkos_ROOT=$Kokkos_ROOT"
