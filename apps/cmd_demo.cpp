@@ -1,5 +1,5 @@
-// `weft demo [--out DIR] [--size N] [--frames A-B]`: runs the built-in demo (a capsule figure in a four-layer
-// dress, io/demo_scene.cpp) at about N cloth triangles, writes DIR/demo.h5 and a PNG contact sheet of it.
+// `weft demo [--out DIR] [--size N] [--frames A-B]`: runs the built-in demo (a capsule figure in a sewn three-layer
+// skirt, io/demo_scene.cpp) at about N cloth triangles, writes DIR/demo.h5 and a PNG contact sheet of it.
 #include "apps/run_scene.hpp"
 #include "io/cache_file.hpp"
 #include "io/contact_sheet.hpp"
@@ -14,7 +14,7 @@ namespace {
 
 struct DemoOptions {
   std::string out = "demo";
-  long size = 50000;
+  long size = 20000;
   std::string frames;
 };
 
@@ -42,7 +42,7 @@ int demo(const GlobalOptions& g, const DemoOptions& o) {
 
 void add_demo(CLI::App& app, const GlobalOptions& g, Action& action) {
   auto o = std::make_shared<DemoOptions>();
-  auto* cmd = app.add_subcommand("demo", "run the demo scene (a figure in a four-layer dress): cache and PNG contact sheet");
+  auto* cmd = app.add_subcommand("demo", "run the demo scene (a figure in a sewn three-layer skirt): cache and PNG contact sheet");
   cmd->add_option("--out", o->out, "folder for demo.h5 and contact-sheet.png (created if missing)")->capture_default_str();
   cmd->add_option("--size", o->size, "about this many cloth triangles")->capture_default_str()->check(CLI::Range(500L, 20000000L));
   cmd->add_option("--frames", o->frames, "frame range A-B (default: the scene's 1-49)");

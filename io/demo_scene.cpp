@@ -6,17 +6,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>  // labs
+#include <utility>
 
 namespace weft::io {
 namespace {
 
-// The dress: cones hung from a ring around the chest, each layer wider and shorter than the one inside, so
-// that every layer shows below the next.
-constexpr real kTop = 1.30, kTopRadius = 0.17, kHemRadius = 0.30, kGap = 0.010;
-real hem_height(int layer) { return 0.50 + 0.07 * layer; }
-// Quads a little taller than wide: fewer rings make the hanging cloth's constraint chains shorter.
-int rings(int res, int layer) { return std::max(2, int(std::lround(1.6 * res * (kTop - hem_height(layer)) / 0.8))); }
-constexpr real kWaist = 1.0;  // a second sewn ring, so that less cloth hangs from one ring
+// The skirt: flared cones from the waist, each layer a little wider and shorter than the one inside so that
+// every layer shows below the next. The hem is much wider than the waist: gravity gathers the excess into folds.
+constexpr real kWaistY = 0.98, kWaistRadius = 0.165, kLayerGap = 0.012, kStitchStiffness = 1e10;
+real hem_height(int layer) { return 0.33 + 0.06 * layer; }
+real hem_radius(int layer) { return 0.42 + 0.025 * layer; }
+// Rows of quads of one gore: quads at the hem about square, taller than wide near the waist.
+int rows(int res, int layer) { return std::max(2, int(std::lround(1.5 * res * (kWaistY - hem_height(layer)) / 0.65))); }
 
 // Pose at frame f: the body turns about the vertical axis; legs and arms swing in opposite phase. Motions
 // ease in over the first half second so the cloth starts at rest.
@@ -24,7 +25,7 @@ struct Pose { real yaw, leg, arm; };
 Pose pose(int f, real fps) {
   const real t = f / fps, ease = std::min(1.0, t / 0.5), e = ease * ease * (3 - 2 * ease);
   const real phase = std::sin(2 * pi * t / 2.0);  // a 2 s cycle
-  return {e * 0.45 * phase, e * 0.35 * phase, -e * 0.30 * phase};
+  return {e * 0.50 * phase, e * 0.70 * phase, -e * 0.30 * phase};
 }
 
 // Rotation about the vertical axis, and about the horizontal x axis through `pivot` (a forward swing).
@@ -43,8 +44,8 @@ std::vector<Part> body_parts() {
   p.push_back({capsule({0, 1.50, 0}, {0, 1.62, 0}, 0.09, rg, sg), {}, 0});             // head
   p.push_back({capsule({-0.30, 1.42, 0}, {0.30, 1.42, 0}, 0.06, rg, sg), {}, 0});      // shoulders
   for (int side : {-1, 1}) {
-    const Vec3 hip{0.08 * side, 0.92, 0}, shoulder{0.30 * side, 1.42, 0};
-    p.push_back({capsule(hip, {0.09 * side, 0.06, 0}, 0.06, rg, sg), hip, side});        // leg
+    const Vec3 hip{0.09 * side, 0.92, 0}, shoulder{0.30 * side, 1.42, 0};
+    p.push_back({capsule(hip, {0.13 * side, 0.06, 0}, 0.06, rg, sg), hip, side});        // leg
     p.push_back({capsule(shoulder, {0.38 * side, 0.86, 0}, 0.05, rg, sg), shoulder, 2 * side});  // arm
   }
   return p;
@@ -54,7 +55,7 @@ std::vector<Part> body_parts() {
 
 long demo_cloth_triangles(int res) {
   long n = 0;
-  for (int l = 0; l < kDemoLayers; ++l) n += 2L * rings(res, l) * (4 * res);
+  for (int l = 0; l < kDemoLayers; ++l) n += 2L * rows(res, l) * res * kDemoGores;
   return n;
 }
 
@@ -74,23 +75,39 @@ Scene demo_scene(int res) {
   st.substeps = 8;
   st.iterations = 10;
   st.collision_passes = 2;
-  const int segments = 4 * res;
-  // Contact thickness well below the smallest edge (the top ring's segments): thicker cloth starts in
-  // contact with itself where the cone's top gathers, and the pinned ring makes those contacts stiff.
-  const real thickness = std::min(0.003, 0.18 * 2 * pi * kTopRadius / segments);
+  // Contact thickness well below the smallest edge (a gore's top edge at the waist), so that contacts never
+  // reach a point's own neighbouring faces.
+  const real thickness = std::min(0.003, 0.25 * 2 * pi * kWaistRadius / (kDemoGores * res));
+  const XpbdMaterial stitch = xpbd_material(kStitchStiffness, -1, 0.001);
   for (int l = 0; l < kDemoLayers; ++l) {
-    const real gap = kGap * l;
-    const Mesh t = tube(hem_height(l), kTop, rings(res, l), segments, kHemRadius + 2 * gap, kTopRadius + gap);
     ClothMaterial mat;
     mat.layer = l;
-    mat.thickness = thickness * (1 - 0.05 * l);  // inner layers a little thicker (lining, slip, dress, veil)
+    mat.thickness = thickness * (1 - 0.05 * l);  // inner layers a little thicker (lining, slip, skirt)
     mat.density = 0.12 - 0.02 * l;
-    const int first = add_cloth_piece(s, t.x, t.tris, mat);
-    const int n = rings(res, l), waist = int(std::lround(n * (kWaist - hem_height(l)) / (kTop - hem_height(l))));
-    for (int ring : {n, waist})  // the top ring is sewn to the chest, and one ring to the waist
-      for (int k = 0; k < segments; ++k) {
-        s.kinematic_point.push_back(first + ring * segments + k);
+    // Gore g spans the angles [g, g + 1] x 2 pi / gores, less 1.25 x `thickness` of arc at each side seam: seam
+    // points of neighbouring gores start 2.5 x thickness apart (just outside where self contact pushes them) and
+    // are stitched at that, straight across and diagonally to the next row (so the seam resists shear too).
+    const int nu = res, nv = rows(res, l);
+    const real r_top = kWaistRadius + kLayerGap * l, r_hem = hem_radius(l), y_hem = hem_height(l);
+    std::vector<int> first(kDemoGores);
+    for (int g = 0; g < kDemoGores; ++g) {
+      Mesh m = grid(nu, nv, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});  // x: across the gore, y: up (0 hem, 1 waist)
+      for (Vec3& p : m.x) {
+        const real r = r_hem + (r_top - r_hem) * p.y, margin = 1.25 * mat.thickness / r;
+        const real a = 2 * pi * g / kDemoGores + margin + p.x * (2 * pi / kDemoGores - 2 * margin);
+        p = {r * std::sin(a), y_hem + (kWaistY - y_hem) * p.y, r * std::cos(a)};
+      }
+      first[size_t(g)] = add_cloth_piece(s, m.x, m.tris, mat);
+      for (int i = 0; i <= nu; ++i) {  // the waistband: the top row is pinned to the figure
+        s.kinematic_point.push_back(first[size_t(g)] + nv * (nu + 1) + i);
         s.kinematic_target.push_back(int(s.kinematic_target.size()));
+      }
+    }
+    for (int g = 0; g < kDemoGores; ++g)  // side seam: gore g's right edge to gore g + 1's left edge
+      for (int j = 0; j < nv; ++j) {
+        const int a = first[size_t(g)] + j * (nu + 1) + nu, b = first[size_t((g + 1) % kDemoGores)] + j * (nu + 1);
+        for (const auto& [p, q] : {std::pair{a, b}, std::pair{a, b + nu + 1}, std::pair{a + nu + 1, b}})
+          s.constraints.distance.push_back({p, q, norm(s.points.position[p] - s.points.position[q]), stitch});
       }
   }
 

@@ -1,13 +1,15 @@
-// The demo scene (`weft demo`, `weft run builtin:demo`): a figure built from capsules that twists at the
-// waist and swings its legs and arms, wearing a dress of four nested layers hung from the chest.
+// The demo scene (`weft demo`, `weft run builtin:demo`): a figure built from capsules that turns at the
+// waist and swings its legs and arms, wearing a flared skirt of three layers, each sewn from six gores
+// (separate panels joined by stitches along their side seams) and pinned at the waist to the figure.
 #pragma once
 #include "core/scene.hpp"
 
 namespace weft::io {
 
-inline constexpr int kDemoLayers = 4;
+inline constexpr int kDemoLayers = 3;
+inline constexpr int kDemoGores = 6;  // panels per layer
 
-// res sets the cloth resolution: 4 res segments around each layer, quads a little taller than wide.
+// res sets the cloth resolution: each gore is res quads wide and about 1.5 res quads tall.
 Scene demo_scene(int res);
 long demo_cloth_triangles(int res);
 // The res whose cloth triangle count is nearest to `triangles` (`weft demo --size N`).

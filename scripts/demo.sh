@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Sets everything up, builds the weft program of the default (openmp) preset and runs the demo (docs/demo.md): a figure of capsules
-# in a four-layer dress, about 50K triangles, written to demo/demo.h5 with a PNG contact sheet
+# in a sewn three-layer skirt, about 20K triangles, written to demo/demo.h5 with a PNG contact sheet
 # demo/contact-sheet.png. Extra arguments go to `weft demo` (e.g. --size 300000).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
