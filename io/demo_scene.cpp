@@ -98,7 +98,10 @@ Scene demo_scene(int res) {
         p = {r * std::sin(a), y_hem + (kWaistY - y_hem) * p.y, r * std::cos(a)};
       }
       first[size_t(g)] = add_cloth_piece(s, m.x, m.tris, mat);
-      for (int i = 0; i <= nu; ++i) {  // the waistband: the top row is pinned to the figure
+      // The waistband: the top row is pinned to the figure, but for its two corners, which the seams hold. Pinned
+      // seam corners would face each other across the seam at contact reach, and points that close can hardly
+      // move relative to each other within their displacement bounds: the turning waist would trail behind.
+      for (int i = 1; i < nu; ++i) {
         s.kinematic_point.push_back(first[size_t(g)] + nv * (nu + 1) + i);
         s.kinematic_target.push_back(int(s.kinematic_target.size()));
       }
