@@ -281,6 +281,13 @@ std::string shell_line(const std::vector<std::string>& words) {
   return line;
 }
 
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
 void write_submission(const Batch& b, const Submission& s) {
   const json j = {{"scheduler", s.scheduler}, {"job", s.job}, {"script", s.script}, {"time", s.time},
                   {"tasks", [&] {

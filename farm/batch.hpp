@@ -70,6 +70,7 @@ struct Submission {
   std::string time;       // ISO 8601, UTC
 };
 void write_submission(const Batch& b, const Submission& s);
+std::string utc_now();  // for Submission::time
 bool read_submission(const Batch& b, Submission& s);  // false when nothing was submitted
 
 }  // namespace weft::farm

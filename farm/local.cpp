@@ -3,7 +3,6 @@
 
 #include <csignal>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -39,13 +38,6 @@ void write_text(const std::string& path, const std::string& text) {
   out << text;
 }
 
-std::string now_utc() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
-}
-
 }  // namespace
 
 int run_local(const Batch& b, int parallel, int gpus) {
@@ -53,7 +45,7 @@ int run_local(const Batch& b, int parallel, int gpus) {
   if (gpus > 0) parallel = gpus;
   parallel = std::max(parallel, 1);
   fs::create_directories(b.output);
-  write_submission(b, {"local", "", "", now_utc()});
+  write_submission(b, {"local", "", "", utc_now()});
   const DeferSignals defer;
   std::map<pid_t, std::pair<size_t, int>> running;  // pid -> (task, slot)
   std::vector<int> free_slots;
@@ -67,7 +59,7 @@ int run_local(const Batch& b, int parallel, int gpus) {
       fs::remove(t.exit_file());
       const int slot = free_slots.back();
       free_slots.pop_back();
-      write_text(t.log(), "== " + now_utc() + " task " + std::to_string(next) + " on this machine (weft batch, local)\n");
+      write_text(t.log(), "== " + utc_now() + " task " + std::to_string(next) + " on this machine (weft batch, local)\n");
       std::vector<std::pair<std::string, std::string>> env;
       if (gpus > 0) env.emplace_back("CUDA_VISIBLE_DEVICES", std::to_string(slot));
       const pid_t pid = start_process(task_command(b, t), t.log(), env);

@@ -2,7 +2,6 @@
 
 #include "backends/simulation.hpp"
 #include "core/hash.hpp"
-#include "farm/scheduler.hpp"
 #include "io/cache_file.hpp"
 #include "io/contact_sheet.hpp"
 #include "io/scene_source.hpp"
@@ -58,6 +57,14 @@ std::string html_escape(const std::string& s) {
   return r;
 }
 
+// A task the queue has no word on: what its exit status and cache say.
+std::string ended_state(const TaskStatus& s) {
+  if (s.exit_code == 0 && s.frames_planned > 0 && s.frames_done == s.frames_planned) return "done";
+  if (s.exit_code == 130 || s.exit_code == 143) return "stopped";
+  if (s.exit_code > 0) return "failed";
+  return s.frames_done > 0 ? "incomplete" : "not started";
+}
+
 struct Row {
   std::vector<std::string> cells;
 };
@@ -86,20 +93,11 @@ std::vector<TaskStatus> batch_status(const Batch& b, const std::map<int, std::st
     // The queue knows best while a task runs, and when it ended without a word of its own (cancelled, out of
     // time, a node failure); a task that ran to its end has its exit code and its cache.
     const auto q = queue.find(int(k));
-    if (q != queue.end() && (slurm_active(q->second) || (q->second != "COMPLETED" && q->second != "FAILED")))
+    const bool queued = q != queue.end() && q->second != "COMPLETED" && q->second != "FAILED";
+    if (queued)
       s.state = lower(q->second);
-    else if (!s.state.empty())
-      ;
-    else if (s.exit_code == 0 && s.frames_planned > 0 && s.frames_done == s.frames_planned)
-      s.state = "done";
-    else if (s.exit_code == 130 || s.exit_code == 143)
-      s.state = "stopped";
-    else if (s.exit_code > 0)
-      s.state = "failed";
-    else if (s.frames_done > 0)
-      s.state = "incomplete";
-    else
-      s.state = "not started";
+    else if (s.state.empty())  // not "unreadable cache"
+      s.state = ended_state(s);
     out.push_back(s);
   }
   return out;

@@ -1,7 +1,6 @@
 #include "farm/process.hpp"
 #include "farm/scheduler.hpp"
 
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -18,13 +17,6 @@ std::string first_line(const std::string& s) {
   const std::string t = trimmed(s);
   const size_t nl = t.find('\n');
   return nl == std::string::npos ? t : t.substr(0, nl);
-}
-
-std::string now_utc() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
 }
 
 }  // namespace
@@ -80,7 +72,7 @@ Submission submit_slurm(const Batch& b) {
   namespace fs = std::filesystem;
   fs::create_directories(b.output + "/slurm");
   for (const Task& t : b.tasks) fs::create_directories(t.dir);
-  Submission sub{"slurm", "", b.output + "/slurm/array.sh", now_utc()};
+  Submission sub{"slurm", "", b.output + "/slurm/array.sh", utc_now()};
   {
     std::ofstream out(sub.script);
     out << slurm_script(b);

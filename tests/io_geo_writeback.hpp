@@ -4,6 +4,7 @@
 #include "io/cache_file.hpp"
 #include "io/geo_writeback.hpp"
 #include "io/houdini_geo.hpp"
+#include "tests/io_checks_fixture.hpp"
 #include "tests/scratch_dir_fixture.hpp"
 
 #include <sys/wait.h>
@@ -20,22 +21,14 @@
 
 namespace {
 
+using weft::test::contains;
+using weft::test::input_error;
+using weft::test::expect_same_attributes;
+
 namespace fs = std::filesystem;
 using namespace weft;
 using namespace weft::io;
 using weft::test::ScratchDir;
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-std::string input_error(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return "";
-}
 
 std::string bytes_of(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -117,20 +110,6 @@ Geometry distance_constraints(const Geometry& sim) {
   c.primitive_attributes["stiffness"] = float_attribute(1, stiffness);
   c.primitive_attributes["restlength"] = float_attribute(1, rest);
   return c;
-}
-
-void expect_same_attributes(const AttributeMap& a, const AttributeMap& b, const std::string& cls) {
-  EXPECT_EQ(a.size(), b.size()) << cls;
-  for (const auto& [name, x] : a) {
-    ASSERT_TRUE(b.count(name)) << cls << " attribute " << name;
-    const Attribute& y = b.at(name);
-    EXPECT_EQ(x.storage, y.storage) << name;
-    EXPECT_EQ(x.size, y.size) << name;
-    EXPECT_EQ(x.qualifier, y.qualifier) << name;
-    EXPECT_EQ(x.floats, y.floats) << name;
-    EXPECT_EQ(x.ints, y.ints) << name;
-    EXPECT_EQ(x.strings, y.strings) << name;
-  }
 }
 
 // Everything of `original` but P and the point attribute v is in `frame`, unchanged.

@@ -1,6 +1,7 @@
 // Houdini .geo / .bgeo: Houdini-written files, round trips, malformed input and atomic writing.
 #include "io/houdini_bjson.hpp"
 #include "io/houdini_geo.hpp"
+#include "tests/io_checks_fixture.hpp"
 
 #include <unistd.h>
 
@@ -14,6 +15,9 @@
 #include <vector>
 
 namespace {
+
+using weft::test::contains;
+using weft::test::expect_same_attributes;
 
 namespace fs = std::filesystem;
 using namespace weft::io;
@@ -54,22 +58,6 @@ std::string format_error(const std::function<void()>& f) {
   }
   ADD_FAILURE() << "no FormatError thrown";
   return "";
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-void expect_same_attributes(const AttributeMap& a, const AttributeMap& b, const std::string& cls) {
-  ASSERT_EQ(a.size(), b.size()) << cls;
-  for (const auto& [name, x] : a) {
-    ASSERT_TRUE(b.count(name)) << cls << " attribute " << name;
-    const Attribute& y = b.at(name);
-    EXPECT_EQ(x.storage, y.storage) << name;
-    EXPECT_EQ(x.size, y.size) << name;
-    EXPECT_EQ(x.qualifier, y.qualifier) << name;
-    EXPECT_EQ(x.floats, y.floats) << name;
-    EXPECT_EQ(x.ints, y.ints) << name;
-    EXPECT_EQ(x.strings, y.strings) << name;
-  }
 }
 
 void expect_same(const Geometry& a, const Geometry& b) {

@@ -7,6 +7,7 @@
 #include "io/procedural.hpp"
 #include "io/scene_file.hpp"
 #include "io/scene_source.hpp"
+#include "tests/io_checks_fixture.hpp"
 
 #include <unistd.h>
 
@@ -17,6 +18,9 @@
 #include <vector>
 
 namespace {
+
+using weft::test::contains;
+using weft::test::input_error;
 
 namespace fs = std::filesystem;
 using namespace weft;
@@ -36,18 +40,6 @@ struct TempDir {
     return file(name);
   }
 };
-
-std::string input_error(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return "";
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 const char* kFlagObj = "v 0 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nf 1 2 3 4\n";
 

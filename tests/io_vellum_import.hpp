@@ -5,6 +5,7 @@
 #include "io/obj.hpp"
 #include "io/scene_file.hpp"
 #include "io/vellum_import.hpp"
+#include "tests/io_checks_fixture.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -20,6 +21,9 @@
 
 namespace {
 
+using weft::test::contains;
+using weft::test::input_error;
+
 namespace fs = std::filesystem;
 using namespace weft;
 using namespace weft::io;
@@ -34,18 +38,6 @@ struct TempDir {
   ~TempDir() { fs::remove_all(path); }
   std::string file(const std::string& name) const { return (path / name).string(); }
 };
-
-std::string input_error(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return "";
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 // Sim geometry: 3 x 3 points 0.5 m apart in the plane y = 1 (point j*3+i at (0.5 i, 1, 0.5 j)), four quads.
 Geometry cloth_sim() {
