@@ -2,6 +2,7 @@
 // (docs/performance.md). Reports numbers; asserts nothing.
 #include "apps/cli.hpp"
 #include "backends/simulation.hpp"
+#include "io/scene_overrides.hpp"
 #include "io/scene_source.hpp"
 #include "io/trimesh.hpp"
 
@@ -14,6 +15,7 @@ namespace {
 struct Options {
   std::string scene, schedules = "current", json, self_collision, contact_model, pair_refresh, contact_solver, ccd_span,
       tethers;
+  std::vector<std::string> set;  // settings by name (weft run --set)
   int res = 0, frames = 10, warmup = -1;  // -1: 16 with --schedules paper (the skirt is in contact by then), else 2
 };
 
@@ -96,6 +98,9 @@ int bench(const GlobalOptions& g, const Options& o) {
   const Backend b = resolve_backend(g);
   Runtime rt(g.threads);
   Scene scene = io::load_scene(o.scene, io::BuiltinOptions{o.res});
+  std::vector<io::SceneOverride> overrides;
+  for (const std::string& kv : o.set) overrides.push_back(io::parse_override(kv));
+  io::apply_overrides(scene, overrides);
   apply_self_collision(o.self_collision, scene.settings.self_collision);
   apply_contact_model(o.contact_model, scene.settings.contact_model);
   apply_pair_refresh(o.pair_refresh, scene.settings.pair_refresh);
@@ -155,7 +160,7 @@ int bench(const GlobalOptions& g, const Options& o) {
           << ", \"contacts\": " << r.contacts << ", \"max_strain\": " << r.max_strain
           << ", \"p99_strain\": " << r.p99_strain << ", \"intersections\": " << r.intersections
           << ", \"max_pin_lag\": " << r.pin_lag
-          << ", \"collision_passes\": " << r.passes_per_frame
+          << ", \"passes_per_frame\": " << r.passes_per_frame
           << ", \"queries\": " << r.queries << ", \"early_passes\": " << r.early_passes
           << ", \"points_cut_back\": " << r.cut_back
           << ", \"memory_bytes\": " << r.memory << "}";
@@ -181,6 +186,10 @@ void add_bench(CLI::App& app, const GlobalOptions& g, Action& action) {
   add_contact_solver_option(cmd, o->contact_solver);
   add_ccd_span_option(cmd, o->ccd_span);
   add_tethers_option(cmd, o->tethers);
+  cmd->add_option("--set", o->set,
+                  "NAME=VALUE: a setting by name as weft run takes it, before the options above; --schedules paper "
+                  "then sets iterations, passes and substeps (repeatable; 'weft run --set help' lists them)")
+      ->allow_extra_args(false);
   cmd->callback([&g, &action, o] { action = [&g, o] { return bench(g, *o); }; });
 }
 

@@ -138,7 +138,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     early_in_substep_ = 0;
     if (substep != 0) return;
     if (proximity_) { build_ = true; return; }  // the first query builds the trees from its own boxes
-    timed(stats_.seconds_lbvh_build, [&] {
+    timed("weft::lbvh_build", stats_.seconds_lbvh_build, [&] {
       update_boxes(s.exec, cloth_side(s), collider_side(s), cloth_margin_);
       cloth_bvh_.build(cloth_boxes_);
       if (collider_boxes_.extent(0) > 0) collider_bvh_.build(collider_boxes_);
@@ -156,7 +156,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
       cloth.xs = x_pass_;
       collider.xs = collider.x;
     }
-    timed(stats_.seconds_broad_phase, [&] {
+    timed("weft::broad_phase", stats_.seconds_broad_phase, [&] {
       update_boxes(s.exec, cloth, collider, cloth_margin_);
       cloth_bvh_.refit(cloth_boxes_);
       if (collider_boxes_.extent(0) > 0) collider_bvh_.refit(collider_boxes_);
@@ -171,7 +171,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
       Kokkos::deep_copy(s.exec, x_pass_, s.x);
     }
     if (jacobi_) offsets_ = {0};  // Jacobi needs no colours
-    else timed(stats_.seconds_contact_colouring, [&] { offsets_ = colouring_.colour(s.exec, contacts_, n, s.w); });
+    else timed("weft::contact_colouring", stats_.seconds_contact_colouring, [&] { offsets_ = colouring_.colour(s.exec, contacts_, n, s.w); });
     stats_.contacts = n;
     stats_.colours = long(offsets_.size()) - 1;
   }
@@ -250,9 +250,10 @@ class CollisionHandler final : public CollisionStage<Exec> {
     const bool colliders = collider_boxes_.extent(0) > 0;
     const View<Vec3*> from = first ? s.x_start : s.x;
     bool refresh = false;
-    timed(stats_.seconds_broad_phase, [&] {
+    timed("weft::broad_phase", stats_.seconds_broad_phase, [&] {
       // An early pass runs because points were cut back: it queries afresh, which resets what they spent
-      // and widens the margins where they want to move.
+      // and widens the margins where they want to move (keeping the pairs there as a scheduled pass may
+      // saved nothing on the skirt: most points then had spent half of what the kept pairs allow).
       refresh = refresh_ && self_ && !build_ && !early_next_ &&
                 !(real(b.spent(s.exec, from, s.w)) > early_fraction_ * real(b.movable()));
       early_next_ = false;
@@ -283,8 +284,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
     if (self_) {
       NarrowSettings ns = ns_;
       ns.self = true;
-      if (!refresh) timed(stats_.seconds_broad_phase, [&] { nself_pairs_ = cloth_bvh_.query_self(KeepAllPairs{}, pairs_); });
-      timed(stats_.seconds_narrow_phase, [&] {
+      if (!refresh) timed("weft::broad_phase", stats_.seconds_broad_phase, [&] { nself_pairs_ = cloth_bvh_.query_self(KeepAllPairs{}, pairs_); });
+      timed("weft::self_bounds_contacts", stats_.seconds_narrow_phase, [&] {
         // The cloth stands still at X0: the bounds' distances decide its contacts too.
         const long np = nself_pairs_;
         lbvh_detail::reserve(self_hits_, np, "weft::self_hits");
@@ -298,17 +299,17 @@ class CollisionHandler final : public CollisionStage<Exec> {
       SideMesh<Mem> moving = cloth;  // from X0 to where the cloth goes
       moving.x = b.end();
       long npairs = 0;
-      timed(stats_.seconds_broad_phase, [&] {
+      timed("weft::broad_phase", stats_.seconds_broad_phase, [&] {
         npairs = collider_bvh_.query(View<const Aabb*>(swept_boxes_), KeepAllPairs{}, collider_pairs_);
       });
-      timed(stats_.seconds_narrow_phase, [&] {
+      timed("weft::collider_narrow_phase", stats_.seconds_narrow_phase, [&] {
         SideMesh<Mem> there = cloth;
         there.x = there.xs = b.end();
         b.add_pairs(s.exec, there, collider, collider_pairs_, npairs, b.end(), s.w);
         if (npairs > 0) n += narrow_.run(Exec(), moving, collider, ns, collider_pairs_, npairs, contacts_, n);
       });
     }
-    timed(stats_.seconds_narrow_phase, [&] {
+    timed("weft::bounds_finish", stats_.seconds_narrow_phase, [&] {
       b.finish(s.exec, s.w);
       // The prediction (or what the last query left of it) cut back to the new bounds; the points still
       // held short ask for an early pass at the next check.
@@ -328,13 +329,13 @@ class CollisionHandler final : public CollisionStage<Exec> {
     NarrowSettings ns = ns_;
     ns.self = self;
     long npairs = 0;
-    timed(stats_.seconds_broad_phase, [&] {
+    timed("weft::broad_phase", stats_.seconds_broad_phase, [&] {
       if (self) npairs = cloth_bvh_.query_self(KeepAllPairs{}, pairs_);
       else npairs = collider_bvh_.query(View<const Aabb*>(cloth_boxes_), KeepAllPairs{}, pairs_);
     });
     if (npairs == 0) return 0;
     long total = 0;
-    timed(stats_.seconds_narrow_phase, [&] { total = narrow_pairs(A, B, ns, npairs, first); });
+    timed("weft::narrow_phase", stats_.seconds_narrow_phase, [&] { total = narrow_pairs(A, B, ns, npairs, first); });
     return total;
   }
 
@@ -345,7 +346,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
 
  private:
   template <class F>
-  void timed(double& acc, F&& stage) { timed_stage(profile_, acc, stage); }
+  void timed(const char* region, double& acc, F&& stage) { timed_stage(region, profile_, acc, stage); }
   // sin(x) for the small angle of the parallel-edge rule, from its Taylor series (no library call).
   static real sin_small(real x) {
     real term = x, s = x;

@@ -340,7 +340,8 @@ class DisplacementBounds {
         want_("weft::bounds_want", points), margin_("weft::bounds_margin", floor.extent(0)),
         scratch_("weft::bounds_scratch", points), dmin_("weft::bounds_dmin", points),
         qmin_("weft::bounds_qmin", points), deficit_("weft::bounds_deficit", points), pending_("weft::bounds_pending", points),
-        cut_("weft::bounds_cut", points), flag_("weft::bounds_flag", points), xq_("weft::bounds_xq", points) {}
+        cut_("weft::bounds_cut", points), flag_("weft::bounds_flag", points), xq_("weft::bounds_xq", points),
+        sums_("weft::bounds_sums") {}
 
   long movable() const { return movable_ > 0 ? movable_ : 0; }  // counted at the first prepare()
   const View<Vec3*>& x0() const { return x0_; }
@@ -362,7 +363,7 @@ class DisplacementBounds {
   // A new query from positions `from` (X0) while the cloth is at x; `first`: the substep's first query
   // (the prediction is what the points want), else they want the deficit the last query left. A full
   // query sets the triangles' margins; a `refresh` keeps them, and the pairs (the caller's), from the last
-  // full one. Reads three sums back.
+  // full one. Reads three sums back, in one copy.
   void prepare(const Exec& exec, const View<Vec3*>& from, const View<Vec3*>& x, const View<real*>& w,
                const View<int* [3]>& tris, bool first, bool refresh = false) {
     using namespace bounds_detail;
@@ -375,19 +376,25 @@ class DisplacementBounds {
                            bounds_detail::MarkMovable<Mem>{w, flag_});
       movable_ = sum_counts(exec, flag_);
     }
-    real sum[3] = {0, 0, 0};
     // The cloth's reference motion: with animated pins, theirs (what it hangs from: with the free points'
     // mean the jammed twist drifted off, pins and all, to 20 m/s); on still pins or none, its free
-    // points' (a sheet on still pins, struck by a fast collider, moves on with it).
+    // points' (a sheet on still pins, struck by a fast collider, moves on with it). Its three sums are
+    // read back together.
     const long pinned = n - movable_;
     const bool by_pins = s_.bound_pins && s_.animated_pins && pinned > 0;
     const long averaged = by_pins ? pinned : movable_;
-    for (int k = 0; k < 3 && movable_ > 0; ++k) {
-      Kokkos::parallel_for("weft::bounds_wanted", Kokkos::RangePolicy<Exec>(exec, 0, n),
-                           WantedComponent<Mem>{x, x0_, deficit_, pending_, w, scratch_, k, resume_, by_pins});
-      sum[k] = reduce_fixed(exec, scratch_, SumOp{});
+    t_ = Vec3{0, 0, 0};
+    if (movable_ > 0) {
+      for (int k = 0; k < 3; ++k) {
+        Kokkos::parallel_for("weft::bounds_wanted", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                             WantedComponent<Mem>{x, x0_, deficit_, pending_, w, scratch_, k, resume_, by_pins});
+        reduce_fixed_into(exec, scratch_, Kokkos::subview(sums_, k), SumOp{});
+      }
+      real sum[3];
+      Kokkos::deep_copy(exec, Kokkos::View<real[3], Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>(sum), sums_);
+      exec.fence();
+      t_ = Vec3{sum[0], sum[1], sum[2]} / real(averaged);
     }
-    t_ = movable_ > 0 ? Vec3{sum[0], sum[1], sum[2]} / real(averaged) : Vec3{0, 0, 0};
     Kokkos::parallel_for("weft::bounds_prepare", Kokkos::RangePolicy<Exec>(exec, 0, n),
                          PreparePoints<Mem>{x, x0_, deficit_, pending_, w, want_, xrel_, xb_, dmin_, qmin_, t_,
                                             resume_, s_.bound_pins, refresh_});
@@ -449,6 +456,7 @@ class DisplacementBounds {
   View<int*> pending_;   // pinned points short of their target
   View<int*> cut_, flag_;  // flag_: per point, for counts
   View<Vec3*> xq_;        // X0 of the last full query
+  View<real[3]> sums_;    // the wanted moves' sums, for the common translation
   Vec3 t_{0, 0, 0}, tq_{0, 0, 0};  // this query's translation; the sum of those since the last full query
   bool resume_ = false, refresh_ = false, queried_ = false;
 };

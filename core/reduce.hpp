@@ -53,22 +53,54 @@ struct ReduceStore {
   KOKKOS_INLINE_FUNCTION void operator()(int) const { out() = partial(0); }
 };
 
-// Reduce x[0..n) into out() on the device; no host copy.
-template <class Exec, class Op, class XView, class OutView>
-void reduce_fixed_into(const Exec& exec, const XView& x, const OutView& out, Op op = Op{}) {
-  using Mem = typename Exec::memory_space;
-  using In = Kokkos::View<const real*, Mem>;
-  using Partial = Kokkos::View<real*, Mem>;
+namespace reduce_detail {
+
+// Working memory of the reductions below, kept between calls and grown as needed: a View allocated per
+// call cost a device allocation and a free that synchronizes the device (cudaFree), several per pass and
+// per iteration. Released when Kokkos finalizes. One per value type and memory space; calls on one
+// execution space instance reuse it in stream order.
+template <class T, class Mem>
+Kokkos::View<T*, Mem> workspace(long n) {
+  static Kokkos::View<T*, Mem>* ws = nullptr;
+  if (!ws) {
+    ws = new Kokkos::View<T*, Mem>();
+    Kokkos::push_finalize_hook([] {
+      delete ws;
+      ws = nullptr;
+    });
+  }
+  if (long(ws->extent(0)) < n)
+    *ws = Kokkos::View<T*, Mem>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::reduce_workspace"), n + n / 2 + 64);
+  return *ws;
+}
+
+// Elements of the partial results of every level of a reduction of n values, and one spare after them
+// (reduce_fixed's result).
+inline long levels_size(long n) {
+  long total = 0;
+  do {
+    n = (n + kReduceBlock - 1) / kReduceBlock;
+    total += n;
+  } while (n > 1);
+  return total + 1;
+}
+
+// reduce_fixed_into with the partial results in ws.
+template <class Exec, class Op, class XView, class OutView, class Partial>
+void reduce_levels(const Exec& exec, const XView& x, const OutView& out, Op op, const Partial& ws) {
+  using In = Kokkos::View<const real*, typename Exec::memory_space>;
   const long n = static_cast<long>(x.extent(0));
   if (n == 0) {
     Kokkos::parallel_for("weft::reduce_empty", Kokkos::RangePolicy<Exec>(exec, 0, 1), ReduceIdentity<OutView, Op>{out});
     return;
   }
   In in = x;
+  long at = 0;
   while (true) {
     const long len = static_cast<long>(in.extent(0));
     const long nb = (len + kReduceBlock - 1) / kReduceBlock;
-    Partial partial(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::reduce_partial"), nb);
+    const Partial partial = Kokkos::subview(ws, std::make_pair(at, at + nb));
+    at += nb;
     Kokkos::parallel_for("weft::reduce_blocks", Kokkos::RangePolicy<Exec>(exec, 0, nb),
                          ReduceBlocks<In, Partial, Op>{in, partial, len, op});
     if (nb == 1) {
@@ -80,11 +112,22 @@ void reduce_fixed_into(const Exec& exec, const XView& x, const OutView& out, Op 
   }
 }
 
+}  // namespace reduce_detail
+
+// Reduce x[0..n) into out() on the device; no host copy.
+template <class Exec, class Op, class XView, class OutView>
+void reduce_fixed_into(const Exec& exec, const XView& x, const OutView& out, Op op = Op{}) {
+  const long size = reduce_detail::levels_size(static_cast<long>(x.extent(0)));
+  reduce_detail::reduce_levels(exec, x, out, op, reduce_detail::workspace<real, typename Exec::memory_space>(size));
+}
+
 // Reduce to a host value (one small copy).
 template <class Exec, class Op, class XView>
 real reduce_fixed(const Exec& exec, const XView& x, Op op = Op{}) {
-  Kokkos::View<real, typename Exec::memory_space> out(Kokkos::view_alloc(exec, std::string("weft::reduce_result")));
-  reduce_fixed_into<Exec, Op>(exec, x, out, op);
+  const long size = reduce_detail::levels_size(static_cast<long>(x.extent(0)));
+  const auto ws = reduce_detail::workspace<real, typename Exec::memory_space>(size);
+  const auto out = Kokkos::subview(ws, size - 1);  // the spare after the partials
+  reduce_detail::reduce_levels(exec, x, out, op, ws);
   real h = 0;
   Kokkos::deep_copy(exec, h, out);
   exec.fence();
@@ -117,14 +160,16 @@ long sum_counts(const Exec& exec, const XView& x) {
   using Partial = Kokkos::View<long*, Mem>;
   long len = static_cast<long>(x.extent(0));
   if (len == 0) return 0;
-  long nb = (len + kReduceBlock - 1) / kReduceBlock;
-  Partial partial(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::count_partial"), nb);
+  const Partial ws = reduce_detail::workspace<long, Mem>(reduce_detail::levels_size(len));
+  long nb = (len + kReduceBlock - 1) / kReduceBlock, at = nb;
+  Partial partial = Kokkos::subview(ws, std::make_pair(0L, nb));
   Kokkos::parallel_for("weft::count_blocks", Kokkos::RangePolicy<Exec>(exec, 0, nb),
                        SumCountBlocks<XView, Partial>{x, partial, len});
   while (nb > 1) {
     len = nb;
     nb = (len + kReduceBlock - 1) / kReduceBlock;
-    Partial next(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::count_partial"), nb);
+    const Partial next = Kokkos::subview(ws, std::make_pair(at, at + nb));
+    at += nb;
     Kokkos::parallel_for("weft::count_blocks", Kokkos::RangePolicy<Exec>(exec, 0, nb),
                          SumCountBlocks<Partial, Partial>{partial, next, len});
     partial = next;

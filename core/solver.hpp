@@ -150,32 +150,32 @@ class Solver {
     if (collision_) collision_->begin_substep(state_, h, s);
     const int P = collision_ ? st_.collision_passes : 0, I = st_.iterations;
     int next_pass = 0;
-    auto timed = [this](double& acc, auto&& stage) { timed_stage(st_.profile, acc, stage); };
+    auto timed = [this](const char* region, double& acc, auto&& stage) { timed_stage(region, st_.profile, acc, stage); };
     auto collision_pass = [&] {
-      timed(prof_.seconds_collision_passes, [&] { collision_->pass(state_, h); });
+      timed("weft::collision_pass", prof_.seconds_collision_passes, [&] { collision_->pass(state_, h); });
       ++prof_.collision_passes;
       ++next_pass;
     };
     for (int it = 0; it < I; ++it) {
       while (next_pass < P && (long(next_pass) * I) / P == it) collision_pass();
-      timed(prof_.seconds_constraints, [&] { gauss_seidel_sweep(h); });
+      timed("weft::constraints", prof_.seconds_constraints, [&] { gauss_seidel_sweep(h); });
       if (!collision_) continue;
-      timed(prof_.seconds_contacts, [&] { collision_->project(state_, h); });
+      timed("weft::contacts", prof_.seconds_contacts, [&] { collision_->project(state_, h); });
       // An early pass (proximity contacts, when many points were cut back), unless one is scheduled next.
       const bool scheduled_next = next_pass < P && (long(next_pass) * I) / P == it + 1;
       if (it + 1 < I && !scheduled_next && collision_->wants_pass(state_)) {
-        timed(prof_.seconds_collision_passes, [&] { collision_->pass(state_, h); });
+        timed("weft::collision_pass", prof_.seconds_collision_passes, [&] { collision_->pass(state_, h); });
         ++prof_.collision_passes;
       }
     }
     while (next_pass < P) collision_pass();
-    timed(prof_.seconds_constraints, [&] {
+    timed("weft::smoothing_sweeps", prof_.seconds_constraints, [&] {
       for (int it = 0; it < st_.smoothing_iterations; ++it) jacobi_sweep(h);
     });
-    if (collision_) timed(prof_.seconds_failsafe, [&] { collision_->finish_positions(state_, h); });
+    if (collision_) timed("weft::finish_positions", prof_.seconds_failsafe, [&] { collision_->finish_positions(state_, h); });
     Kokkos::parallel_for("weft::velocity", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
                          kernels::UpdateVelocity<Mem>{state_.x, state_.x_start, state_.v, h});
-    if (collision_) timed(prof_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });
+    if (collision_) timed("weft::impact_zones", prof_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });
   }
 
   // One Gauss-Seidel sweep, then the tethers, recorded once as a graph, so that on the device a sweep is one

@@ -1,5 +1,7 @@
-// Fenced wall time of one stage of a frame (SolverSettings::profile): device work is asynchronous, so the
-// stage is fenced before and after and its time lands where it ran. Without profiling the stage just runs.
+// One stage of a frame, as a Kokkos Tools region (any Kokkos profiler shows the stages, e.g. nsys with the
+// nvtx connector), and with SolverSettings::profile its fenced wall time: device work is asynchronous, so
+// the stage is fenced before and after and its time lands where it ran. Without profiling the stage just
+// runs.
 #pragma once
 #include <Kokkos_Core.hpp>
 
@@ -8,9 +10,11 @@
 namespace weft {
 
 template <class F>
-void timed_stage(bool profile, double& seconds, F&& stage) {
+void timed_stage(const char* region, bool profile, double& seconds, F&& stage) {
+  Kokkos::Profiling::pushRegion(region);
   if (!profile) {
     stage();
+    Kokkos::Profiling::popRegion();
     return;
   }
   Kokkos::fence();
@@ -18,6 +22,7 @@ void timed_stage(bool profile, double& seconds, F&& stage) {
   stage();
   Kokkos::fence();
   seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  Kokkos::Profiling::popRegion();
 }
 
 }  // namespace weft

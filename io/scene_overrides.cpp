@@ -113,7 +113,7 @@ const std::vector<Entry>& entries() {
        [](Scene& s, const std::string& v) { s.settings.early_pass_fraction = to_real(v); }},
       {"max_early_passes", "integer >= 0: early passes per substep at most",
        [](Scene& s, const std::string& v) { s.settings.max_early_passes = to_int(v, 0); }},
-      {"impact_zone_smoothing", "on | off (ccd model)",
+      {"impact_zone_smoothing", "on | off: smoothing of velocities in unresolved contacts (both models)",
        [](Scene& s, const std::string& v) { s.settings.impact_zone_smoothing = to_bool(v); }},
       {"collision_failsafe", "on | off (ccd model)",
        [](Scene& s, const std::string& v) { s.settings.collision_failsafe = to_bool(v); }},

@@ -308,6 +308,25 @@ TEST(WEFT_TEST_SUITE, cli_global_options_go_before_or_after_the_subcommand) {
   EXPECT_NE(weft(run + " --backend nonsense").find("unknown backend 'nonsense'"), std::string::npos);
 }
 
+// weft bench takes settings by name as weft run does, and its JSON has one key per figure (the scheduled
+// passes per substep and the passes per frame, early ones counted, apart).
+TEST(WEFT_TEST_SUITE, cli_bench_takes_settings_by_name_and_writes_each_key_once) {
+  WEFT_NEED_CLI();
+  const CacheDir dir("cli_bench");
+  Cli weft(dir);
+  const std::string json = dir.file("bench.json");
+  ASSERT_EQ(weft("bench builtin:drape-sphere --res 4 --frames 1 --warmup 1 --set substeps=3 --set collision_passes=1 "
+                 "--json " + json), 0) << weft.output;
+  std::ifstream in(json);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(text.find("\"substeps\": 3"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"collision_passes\": 1,"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"passes_per_frame\": "), std::string::npos) << text;
+  EXPECT_EQ(text.find("\"collision_passes\""), text.rfind("\"collision_passes\"")) << text;
+  EXPECT_EQ(weft("bench builtin:drape-sphere --res 4 --frames 1 --set substep=3"), 1);  // as weft run
+  EXPECT_NE(weft.output.find("unknown setting 'substep'"), std::string::npos) << weft.output;
+}
+
 TEST(WEFT_TEST_SUITE, cli_run_resume_gives_the_straight_runs_cache_and_hash) {
   WEFT_NEED_CLI();
   const CacheDir dir("cli_resume");

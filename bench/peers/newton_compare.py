@@ -36,8 +36,9 @@ Differences that remain (stated in the output too):
     inextensible) and dihedral bending 1e-3 N m/rad. Newton VBD: StVK membrane tri_ke = tri_ka = 1e3 with
     tri_kd = 2e-4, dihedral bending edge_ke = 1e-3, edge_kd = 1e-2 (the values of Newton's own cloth_twist
     example; VBD converges poorly at 1e10). So Newton's sheet is slightly stretchier.
-  - Solvers differ. weft: 20 XPBD Gauss-Seidel iterations per substep, 2 collision passes per substep
-    (CCD + impact zones, paper's scheme). Newton: --newton-iterations VBD iterations per substep (default
+  - Solvers differ. weft: 20 XPBD Gauss-Seidel iterations per substep, 2 scheduled collision passes per
+    substep (proximity contacts with displacement bounds, the default contact model; early passes when
+    many points are cut back; impact zones). Newton: --newton-iterations VBD iterations per substep (default
     20, the same count; one VBD iteration does more work than one XPBD sweep), self-contact detected before
     and after initialization each substep (Newton's default schedule), penalty/barrier contact with
     soft_contact_ke = 1e3, soft_contact_kd = 1e-1 (Newton's cloth_twist example) and DAT truncation.

@@ -165,7 +165,9 @@ def plot(path, rows, backend):
         ax.plot(t, [r["ms_per_frame"] for r in pts], "o-", label=f"skirt, ms/frame ({sched})")
         for key, label in (("ms_constraints", "constraints"), ("ms_failsafe", "fail-safe")):
             ax.plot(t, [max(r[key], 1e-3) for r in pts], ".--", label=f"skirt, {label} ({sched})")
-        ax.plot(t, [max(r["ms_per_collision_pass"] * r["collision_passes"] * r["substeps"], 1e-3) for r in pts], ".:",
+        # passes_per_frame counts the early passes too (proximity contacts)
+        ax.plot(t, [max(r["ms_per_collision_pass"] * r.get("passes_per_frame", r["collision_passes"] * r["substeps"]), 1e-3)
+                    for r in pts], ".:",
                 label=f"skirt, collision passes ({sched})")
     for r in rows:
         if r["kind"] != "sweep":

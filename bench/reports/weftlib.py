@@ -262,9 +262,9 @@ def write_obj(path, positions, triangles):
 
 
 def intersections(weft, positions, triangles, obj_path, backend=None, log=None):
-    """Cloth triangle pairs that intersect in one frame. `weft check-intersections` takes a scene (and
-    re-simulates it with the scene's own schedule) or a static OBJ mesh, not a cache frame: so the frame is
-    written as an OBJ and counted as a static mesh. None when weft refuses the mesh."""
+    """Cloth triangle pairs that intersect in one frame held in memory: the frame is written as an OBJ and
+    counted as a static mesh by `weft check-intersections` (which also reads cache frames, --frame and
+    --all-frames). None when weft refuses the mesh."""
     import numpy as np
     if not np.all(np.isfinite(positions)):
         return None

@@ -8,6 +8,10 @@
 //   WEFT_TIMELINE_FROM=weft::predict:11   (optional: record from the 11th launch of that kernel on, e.g. to
 //                                          leave out the first frame)
 //
+// Kokkos Tools regions (weft's stages: weft::constraints, weft::collision_pass, weft::broad_phase, ...) get
+// their GPU span from an event recorded at the region's start and one at its end: the time the stage held
+// the GPU, its kernels, graphs and idle gaps included.
+//
 // Kernels inside a CUDA graph (the Gauss-Seidel sweeps) are not launches Kokkos reports: their run lands
 // in the gap before the next reported kernel. Needs the CUDA driver (libcuda, looked up at run time); on
 // other backends it reports nothing.
@@ -46,6 +50,8 @@ struct State {
   std::vector<std::string> names;
   std::map<std::string, int> name_index;
   std::vector<Launch> launches;
+  std::vector<Launch> regions;     // closed regions, and open ones on `open`
+  std::vector<size_t> open;
   std::vector<Event> pool;  // events created ahead, taken in order
   size_t next_event = 0;
 };
@@ -133,6 +139,34 @@ void kokkosp_end_parallel_scan(uint64_t id) { end(id); }
 void kokkosp_begin_parallel_reduce(const char* name, uint32_t, uint64_t* id) { *id = begin(name); }
 void kokkosp_end_parallel_reduce(uint64_t id) { end(id); }
 
+void kokkosp_push_profile_region(const char* name) {
+  State& s = state();
+  if (!s.cu.ok() || !s.recording) {
+    s.open.push_back(~size_t(0));
+    return;
+  }
+  auto it = s.name_index.find(name);
+  if (it == s.name_index.end()) {
+    it = s.name_index.emplace(name, int(s.names.size())).first;
+    s.names.push_back(name);
+  }
+  Launch r{it->second, take_event(), nullptr};
+  if (r.start) s.cu.event_record(r.start, nullptr);
+  s.regions.push_back(r);
+  s.open.push_back(s.regions.size() - 1);
+}
+
+void kokkosp_pop_profile_region() {
+  State& s = state();
+  if (s.open.empty()) return;
+  const size_t id = s.open.back();
+  s.open.pop_back();
+  if (id == ~size_t(0)) return;
+  Launch& r = s.regions[id];
+  r.end = take_event();
+  if (r.end) s.cu.event_record(r.end, nullptr);
+}
+
 void kokkosp_finalize_library() {
   State& s = state();
   FILE* out = stderr;
@@ -171,6 +205,17 @@ void kokkosp_finalize_library() {
   std::fprintf(out, "gpu timeline: %zu launches over %.2f ms: kernels %.2f ms (%.1f%%), between kernels %.2f ms "
                "(%.1f%%: launch latency, read-backs, host work, and the CUDA graphs' runs)\n",
                s.launches.size(), span, busy, 100 * busy / span, idle, 100 * idle / span);
+  std::map<std::string, Total> region;
+  for (const Launch& r : s.regions) {
+    if (!r.start || !r.end) continue;
+    float ms = 0;
+    s.cu.elapsed(&ms, r.start, r.end);
+    Total& t = region[s.names[r.name]];
+    t.count += 1;
+    t.ms += ms;
+  }
+  if (!region.empty())
+    print_table(out, "regions (weft's stages; GPU span from start to end, nested ones inside their parents)", region, span);
   print_table(out, "kernels (GPU time, unfenced)", run, span);
   print_table(out, "time between the previous kernel's end and this kernel's start", gap_before, span);
   if (out != stderr) std::fclose(out);
