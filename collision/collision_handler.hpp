@@ -384,7 +384,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     return upload_tris(nb);
   }
 
- public:  // kernels below launch device lambdas, which CUDA allows only in public member functions
+ public:
   // Swept boxes from each side's xs to x: cloth boxes inflated by `cloth_margin` (per triangle), collider
   // boxes by the contact margin.
   void update_boxes(const Exec& exec, const SideMesh<Mem>& cloth, const SideMesh<Mem>& collider, const View<real*>& cloth_margin) {

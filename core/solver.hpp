@@ -1,6 +1,7 @@
 // The XPBD frame loop (see docs/solver.md). A frame = substeps x (predict; iterations of multi-colour
 // Gauss-Seidel over every constraint row, with collision passes spread among them; Jacobi smoothing;
-// velocity update). Everything stays on the device; a frame copies back only a few statistics.
+// velocity update). Positions, rows and contacts stay on the device; inside a frame only counts and sums
+// that size or decide the next launches are read back (docs/solver.md), and the statistics after it.
 #pragma once
 #include "constraints/build_rows.hpp"
 #include "constraints/build_tethers.hpp"
