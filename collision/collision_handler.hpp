@@ -252,8 +252,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
     bool refresh = false;
     timed("weft::broad_phase", stats_.seconds_broad_phase, [&] {
       // An early pass runs because points were cut back: it queries afresh, which resets what they spent
-      // and widens the margins where they want to move (keeping the pairs there as a scheduled pass may
-      // saved nothing on the skirt: most points then had spent half of what the kept pairs allow).
+      // and widens the margins where they want to move. Letting it keep the pairs, as a scheduled pass
+      // may, saved nothing on the skirt: by then most points had spent half of what the pairs allow.
       refresh = refresh_ && self_ && !build_ && !early_next_ &&
                 !(real(b.spent(s.exec, from, s.w)) > early_fraction_ * real(b.movable()));
       early_next_ = false;
