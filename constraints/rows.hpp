@@ -1,5 +1,7 @@
-// Every constraint kind as one row type, so that all kinds are coloured together. Rows are sorted by colour,
-// then kind; the solver projects each colour's rows of one kind by a kernel compiled for that kind.
+// Every constraint kind as one row type (Row), so that all kinds are coloured together on the host. On the
+// device each kind is stored packed (PackedRow<K>: only the fields that kind reads, the material an index
+// into a table), sorted by kind, then colour; the solver projects each colour's rows of one kind by a kernel
+// compiled for that kind.
 #pragma once
 #include "constraints/bend.hpp"
 #include "constraints/distance.hpp"
@@ -69,11 +71,77 @@ KOKKOS_INLINE_FUNCTION decltype(auto) with_row_kind(int kind, const F& f) {
   }
 }
 
-// C and gradients of a row of fixed kind K (not kRowPtPrim or kRowKinds) from its particles' positions p.
-template <int K, class Mem>
-KOKKOS_INLINE_FUNCTION real row_eval_of(const Row& r, const Vec3 (&p)[row_kind_points(K)], const RowContext<Mem>& ctx,
+// A row of kind K as the device stores it: only the fields K reads, and its material as an index into the
+// solver's material table. A sweep streams every row once; a distance row is 24 bytes here and 112 as a Row.
+template <int K>
+struct PackedRow {  // triarap and FEM rows: data = inverse rest shape; rest = gamma (hydrostatic)
+  int idx[3];
+  int material;
+  real rest;
+  real data[4];
+};
+template <>
+struct PackedRow<kRowDistance> {
+  int idx[2];
+  int material;
+  real rest;
+};
+template <>
+struct PackedRow<kRowBend> {
+  int idx[4];
+  int material;
+  real rest;
+};
+template <>
+struct PackedRow<kRowPin> {
+  int idx[1];
+  int material;
+  int target;
+  real rest;
+  real data[3];
+};
+template <>
+struct PackedRow<kRowAttach> {
+  int idx[1];
+  int material;
+  int cidx[3];
+  real rest;
+  real data[2];
+};
+template <>
+struct PackedRow<kRowPtPrim> {
+  int idx[5];
+  int n;
+  int material;
+  real rest;
+  real data[4];
+};
+
+// Row r of kind K, packed, with its material at `material` in the table.
+template <int K>
+PackedRow<K> pack_row(const Row& r, int material) {
+  PackedRow<K> p{};
+  p.material = material;
+  constexpr int N = K == kRowPtPrim ? 5 : row_kind_points(K);
+  for (int k = 0; k < N; ++k) p.idx[k] = r.idx[k];
+  if constexpr (K == kRowPtPrim) p.n = r.n;
+  if constexpr (K == kRowPin) p.target = r.target;
+  if constexpr (K == kRowAttach)
+    for (int k = 0; k < 3; ++k) p.cidx[k] = r.cidx[k];
+  if constexpr (K != kRowDistance && K != kRowBend) {
+    constexpr int D = K == kRowPin ? 3 : K == kRowAttach ? 2 : 4;
+    for (int k = 0; k < D; ++k) p.data[k] = r.data[k];
+  }
+  p.rest = r.rest;
+  return p;
+}
+
+// C and gradients of a row of fixed kind K (not kRowPtPrim or kRowKinds) from its particles' positions p;
+// R is Row or PackedRow<K>.
+template <int K, class R, class Mem>
+KOKKOS_INLINE_FUNCTION real row_eval_of(const R& r, const Vec3 (&p)[row_kind_points(K)], const RowContext<Mem>& ctx,
                                         Vec3 (&g)[row_kind_points(K)]) {
-  static_assert(K != kRowPtPrim && K != kRowKinds, "point-primitive rows have a variable point count: row_eval");
+  static_assert(K != kRowPtPrim && K != kRowKinds, "point-primitive rows have a variable point count");
   if constexpr (K == kRowDistance) {
     return distance_eval(p[0], p[1], r.rest, g);
   } else if constexpr (K == kRowBend) {
@@ -95,81 +163,63 @@ KOKKOS_INLINE_FUNCTION real row_eval_of(const Row& r, const Vec3 (&p)[row_kind_p
   }
 }
 
-// C and gradients of one row of any kind from its particles' positions p[k] = x(r.idx[k]), k < r.n;
-// returns the number of particles (0: nothing to do).
-template <class Mem>
-KOKKOS_INLINE_FUNCTION int row_eval(const Row& r, const Vec3 (&p)[5], const RowContext<Mem>& ctx, real& C, Vec3 (&g)[5]) {
-  return with_row_kind(r.kind, [&](auto kind) -> int {
-    constexpr int K = decltype(kind)::value;
-    if constexpr (K == kRowKinds) {
-      return 0;
-    } else if constexpr (K == kRowPtPrim) {
-      Vec3 t[4];
-      const real w[4] = {r.data[0], r.data[1], r.data[2], r.data[3]};
-      const int nt = r.n - 1;
-      for (int k = 0; k < nt; ++k) t[k] = p[k + 1];
-      C = ptprim_eval(p[0], t, w, nt, r.rest, g);
-      return r.n;
-    } else {
-      constexpr int N = row_kind_points(K);
-      Vec3 pk[N], gk[N];
-      for (int k = 0; k < N; ++k) pk[k] = p[k];
-      C = row_eval_of<K>(r, pk, ctx, gk);
-      for (int k = 0; k < N; ++k) g[k] = gk[k];
-      return N;
-    }
-  });
-}
-
-// Solve one row in place (Gauss-Seidel): lambda accumulates; particles move by w g dlambda. No other row of its
-// colour moves its particles. Any kind; for point-primitive rows (their point count is in the row).
-template <class XView, class WView, class Mem>
-KOKKOS_INLINE_FUNCTION void project_row(const Row& row, const XView& x, const XView& x_start, const WView& w,
-                                        real& lambda, const RowContext<Mem>& ctx, real h) {
-  const Row r = row;
-  Vec3 p[5], dx[5];
-  real wi[5] = {0, 0, 0, 0, 0};
-  for (int k = 0; k < 5; ++k)
-    if (k < r.n) {
-      p[k] = x(r.idx[k]);
-      wi[k] = w(r.idx[k]);
-      dx[k] = p[k] - x_start(r.idx[k]);
-    }
-  const real lambda0 = lambda;
+// A packed row of kind K evaluated at the current positions: C, and per point its index, position, gradient,
+// inverse mass and motion since the substep's start. A point-primitive row has 2 to 5 points (count); its
+// unused slots keep zero gradient, weight and motion, so they add exact zeros to every sum.
+template <int K>
+struct RowState {
+  static constexpr int N = K == kRowPtPrim ? 5 : row_kind_points(K);
+  int count = N;
+  int idx[N];
+  Vec3 p[N], g[N], dx[N];
+  real w[N];
   real C = 0;
-  Vec3 g[5];
-  const int n = row_eval(r, p, ctx, C, g);
-  const real dl = xpbd_delta_lambda<5>(C, g, wi, dx, lambda0, r.m, h);
-  lambda = lambda0 + dl;
-  for (int k = 0; k < n; ++k) x(r.idx[k]) = p[k] + (wi[k] * dl) * g[k];
+};
+
+template <int K, class XView, class WView, class Mem>
+KOKKOS_INLINE_FUNCTION void evaluate_row(const PackedRow<K>& row, const XView& x, const XView& x_start, const WView& w,
+                                         const RowContext<Mem>& ctx, RowState<K>& s) {
+  constexpr int N = RowState<K>::N;
+  if constexpr (K == kRowPtPrim) {
+    s.count = row.n;
+    for (int k = 0; k < N; ++k) {
+      s.idx[k] = row.idx[k];
+      s.w[k] = 0;
+      if (k < s.count) {
+        s.p[k] = x(s.idx[k]);
+        s.w[k] = w(s.idx[k]);
+        s.dx[k] = s.p[k] - x_start(s.idx[k]);
+      }
+    }
+    Vec3 t[4];
+    const int nt = s.count - 1;
+    for (int k = 0; k < nt; ++k) t[k] = s.p[k + 1];
+    const real wt[4] = {row.data[0], row.data[1], row.data[2], row.data[3]};
+    s.C = ptprim_eval(s.p[0], t, wt, nt, row.rest, s.g);
+  } else {
+    for (int k = 0; k < N; ++k) s.idx[k] = row.idx[k];
+    for (int k = 0; k < N; ++k) {
+      s.p[k] = x(s.idx[k]);
+      s.w[k] = w(s.idx[k]);
+      s.dx[k] = s.p[k] - x_start(s.idx[k]);
+    }
+    s.C = row_eval_of<K>(row, s.p, ctx, s.g);
+  }
 }
 
-// project_row for a row known to be of kind K: fixed-size arrays in registers and only the fields K reads,
-// so a kernel over one kind needs a fraction of the registers of the generic one (164 and 528 bytes of
-// stack on sm_90) and fits several times more threads on the GPU. The same arithmetic in the same order:
-// the generic version's extra terms are zeros, so the bits are the same.
+// Solve one packed row of kind K in place (Gauss-Seidel): lambda accumulates; particles move by w g dlambda.
+// No other row of its colour moves its particles. Fixed-size arrays in registers, so a kernel over one kind
+// needs few registers and fits many threads on the GPU.
 template <int K, class XView, class WView, class Mem>
-KOKKOS_INLINE_FUNCTION void project_row_of(const Row& row, const XView& x, const XView& x_start, const WView& w,
-                                           real& lambda, const RowContext<Mem>& ctx, real h) {
-  if constexpr (K == kRowPtPrim) {
-    project_row(row, x, x_start, w, lambda, ctx, h);
-  } else {
-    constexpr int N = row_kind_points(K);
-    int idx[N];
-    Vec3 p[N], dx[N], g[N];
-    real wi[N];
-    for (int k = 0; k < N; ++k) idx[k] = row.idx[k];
-    for (int k = 0; k < N; ++k) {
-      p[k] = x(idx[k]);
-      wi[k] = w(idx[k]);
-      dx[k] = p[k] - x_start(idx[k]);
-    }
-    const real lambda0 = lambda;
-    const real C = row_eval_of<K>(row, p, ctx, g);
-    const real dl = xpbd_delta_lambda<N>(C, g, wi, dx, lambda0, row.m, h);
-    lambda = lambda0 + dl;
-    for (int k = 0; k < N; ++k) x(idx[k]) = p[k] + (wi[k] * dl) * g[k];
-  }
+KOKKOS_INLINE_FUNCTION void project_row_of(const PackedRow<K>& row, const XpbdMaterial& m, const XView& x,
+                                           const XView& x_start, const WView& w, real& lambda,
+                                           const RowContext<Mem>& ctx, real h) {
+  RowState<K> s;
+  evaluate_row(row, x, x_start, w, ctx, s);
+  const real lambda0 = lambda;
+  const real dl = xpbd_delta_lambda<RowState<K>::N>(s.C, s.g, s.w, s.dx, lambda0, m, h);
+  lambda = lambda0 + dl;
+  for (int k = 0; k < s.count; ++k) x(s.idx[k]) = s.p[k] + (s.w[k] * dl) * s.g[k];
 }
 
 }  // namespace weft

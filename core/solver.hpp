@@ -17,9 +17,16 @@
 #include "core/stage_timer.hpp"
 
 #include <Kokkos_Core.hpp>
+#include <array>
 #include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <map>
 #include <memory>
 #include <optional>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace weft {
@@ -42,8 +49,8 @@ class Solver {
   const SolverState<Exec>& state() const { return state_; }
   const SolverSettings& settings() const { return st_; }
   int frame() const { return frame_; }
-  int colour_count() const { return int(colour_offset_.size()) - 1; }
-  long row_count() const { return long(rows_.extent(0)); }
+  int colour_count() const { return int(colour_kinds_.size()); }
+  long row_count() const { return long(lambda_.extent(0)); }
   long tether_count() const { return long(tethers_.extent(0)); }
   void set_collision_stage(std::unique_ptr<CollisionStage<Exec>> c) { collision_ = std::move(c); }
 
@@ -100,12 +107,8 @@ class Solver {
     fs.max_speed = sqrt_(reduce_fixed(exec_, e, MaxOp{}));
     const real sum_v2 = reduce_fixed(exec_, e, SumOp{});
     fs.rms_speed = movable_ > 0 ? sqrt_(sum_v2 / real(movable_)) : 0.0;
-    auto rows = rows_;
-    const long nr = long(rows.extent(0));
-    auto strain = row_scratch_;
-    Kokkos::parallel_for("weft::stats_strain", Kokkos::RangePolicy<Exec>(exec_, 0, nr),
-                         kernels::EdgeStrain<Mem>{rows, x, strain});
-    fs.max_strain = max_(real(0), reduce_fixed(exec_, strain, MaxOp{}));  // -1: not a distance row
+    const auto strain = edge_strains();
+    if (strain.extent(0) > 0) fs.max_strain = max_(real(0), reduce_fixed(exec_, strain, MaxOp{}));  // -1: rest 0
     const long nk = long(kin_point_.extent(0));
     if (nk > 0) {
       const auto lag = Kokkos::subview(e, Kokkos::make_pair(0L, nk));
@@ -122,10 +125,7 @@ class Solver {
 
   // |length / rest - 1| of every distance row at the current positions (for percentiles; copied back).
   std::vector<real> distance_strains() const {
-    auto strain = row_scratch_;
-    Kokkos::parallel_for("weft::stats_strain", Kokkos::RangePolicy<Exec>(exec_, 0, rows_.extent(0)),
-                         kernels::EdgeStrain<Mem>{rows_, state_.x, strain});
-    std::vector<real> all = to_host(strain), out;
+    std::vector<real> all = to_host(edge_strains()), out;
     for (real e : all)
       if (e >= 0) out.push_back(e);
     return out;
@@ -180,20 +180,19 @@ class Solver {
   }
 
   // One Gauss-Seidel sweep, then the tethers, recorded once as a graph, so that on the device a sweep is one
-  // graph launch. On the device each colour is a kernel per row kind, the kinds side by side. The host
-  // backends run one kernel per colour, of any kind: a CPU gains nothing from the smaller kernels, more
-  // launches cost more thread barriers, and Kokkos 3.4's host graphs walk every path back to the root at
-  // each submit, which grows as 2^joins.
+  // graph launch. Each colour is a kernel per row kind: on the device the kinds of a colour side by side, on
+  // the host one after another, since Kokkos 3.4's host graphs walk every path back to the root at each
+  // submit, which grows as 2^joins.
   void gauss_seidel_sweep(real h) {
     if (colour_kinds_.empty() && tethers_.extent(0) == 0) return;
     if (!sweep_ || sweep_h_ != h) {
-      constexpr bool by_kind = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
+      constexpr bool side_by_side = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
       // (void): emplace returns the graph, whose type Kokkos marks [[nodiscard]].
       (void)sweep_.emplace(compat::create_graph(exec_, [&](const compat::GraphNode<Exec>& root) {
         compat::GraphNode<Exec> node = root;
         for (const std::vector<KindRange>& colour : colour_kinds_) {
-          if (!by_kind) {
-            node = project_kind(node, {colour.front().begin, colour.back().end, kRowKinds}, h);
+          if (!side_by_side) {
+            for (const KindRange& k : colour) node = project_kind(node, k, h);
             continue;
           }
           std::optional<compat::GraphNode<Exec>> done;
@@ -214,61 +213,79 @@ class Solver {
   }
 
   // Vellum's smoothing: every row computes its correction from the same positions, and each point moves
-  // by the average of the corrections it receives (gathered in row order: deterministic). On the device the
-  // rows are a kernel per colour and kind, all side by side, recorded once as a graph; the host runs one
-  // kernel over every row.
+  // by the average of the corrections it receives (gathered in the rows' colour order: deterministic). A
+  // kernel per row kind, then one over the points; on the device recorded once as a graph, the kinds side by
+  // side.
   void jacobi_sweep(real h) {
-    const auto rows_kernel = [&](auto kind) {
-      return kernels::JacobiRows<Mem, decltype(kind)::value>{rows_, state_.x, state_.x_start, row_delta_, state_.w,
-                                                               lambda_, RowContext<Mem>{targets_, state_.collider_x}, h};
-    };
-    const kernels::JacobiPoints<Mem> points{point_slot_offset_, point_slot_, row_delta_, state_.x};
     const long n = long(state_.x.extent(0));
-    if constexpr (Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible) {
-      Kokkos::parallel_for("weft::jacobi_rows", Kokkos::RangePolicy<Exec>(exec_, 0, rows_.extent(0)),
-                           rows_kernel(std::integral_constant<int, kRowKinds>{}));
-      Kokkos::parallel_for("weft::jacobi_points", Kokkos::RangePolicy<Exec>(exec_, 0, n), points);
-    } else {
-      if (colour_kinds_.empty()) return;
-      if (!smooth_ || smooth_h_ != h) {
-        (void)smooth_.emplace(compat::create_graph(exec_, [&](const compat::GraphNode<Exec>& root) {
-          std::optional<compat::GraphNode<Exec>> done;
-          for (const std::vector<KindRange>& colour : colour_kinds_)
-            for (const KindRange& k : colour) {
-              const compat::GraphNode<Exec> node = kind_node(root, "weft::jacobi_rows", k, rows_kernel);
-              done = done ? compat::when_all(*done, node) : node;
-            }
-          done->then_parallel_for("weft::jacobi_points", Kokkos::RangePolicy<Exec>(exec_, 0, n), points);
-        }));
-        smooth_h_ = h;
-      }
-      smooth_->submit();
+    const kernels::JacobiPoints<Mem> points{point_slot_offset_, point_slot_, row_delta_, state_.x};
+    const auto rows_node = [&](const auto& after, int kind) {
+      return for_row_kind(kind, [&](auto k) -> compat::GraphNode<Exec> {
+        constexpr int K = decltype(k)::value;
+        return after.then_parallel_for(
+            "weft::jacobi_rows", Kokkos::RangePolicy<Exec>(exec_, kind_begin_[K], kind_begin_[K + 1]),
+            kernels::JacobiRows<Mem, K>{rows_of<K>(), kind_begin_[K], row_count(), materials_, state_.x,
+                                        state_.x_start, row_delta_, state_.w, lambda_,
+                                        RowContext<Mem>{targets_, state_.collider_x}, h});
+      });
+    };
+    if (!smooth_ || smooth_h_ != h) {
+      constexpr bool side_by_side = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
+      (void)smooth_.emplace(compat::create_graph(exec_, [&](const compat::GraphNode<Exec>& root) {
+        compat::GraphNode<Exec> node = root;
+        std::optional<compat::GraphNode<Exec>> done;
+        for (int kind = 0; kind < kRowKinds; ++kind) {
+          if (kind_begin_[kind + 1] == kind_begin_[kind]) continue;
+          if (!side_by_side) { node = rows_node(node, kind); continue; }
+          const compat::GraphNode<Exec> k = rows_node(root, kind);
+          done = done ? compat::when_all(*done, k) : k;
+        }
+        if (done) node = *done;
+        (void)node.then_parallel_for("weft::jacobi_points", Kokkos::RangePolicy<Exec>(exec_, 0, n), points);
+      }));
+      smooth_h_ = h;
     }
+    smooth_->submit();
   }
 
  private:
-  // The rows [begin, end) of one colour, all of one kind (kRowKinds: of any kind).
+  // The rows [begin, end) of one colour, all of one kind.
   struct KindRange {
     long begin, end;
     int kind;
   };
 
-  // A node projecting the rows of k after `after`, by the kernel compiled for k's kind (kRowKinds: any).
-  compat::GraphNode<Exec> project_kind(const compat::GraphNode<Exec>& after, const KindRange& k, real h) const {
-    return kind_node(after, "weft::project_rows", k, [&](auto kind) {
-      return kernels::ProjectRows<Mem, decltype(kind)::value>{rows_, state_.x, state_.x_start, state_.w, lambda_,
-                                                               RowContext<Mem>{targets_, state_.collider_x}, h};
+  // f(std::integral_constant<int, K>{}) for K = kind, a row kind.
+  template <class F>
+  static decltype(auto) for_row_kind(int kind, const F& f) {
+    return with_row_kind(kind, [&](auto k) -> decltype(f(std::integral_constant<int, kRowDistance>{})) {
+      if constexpr (decltype(k)::value == kRowKinds) throw std::logic_error("row kind " + std::to_string(kind));
+      else return f(k);
     });
   }
 
-  // A node running, after `after`, over the rows of k, the kernel that kernel(std::integral_constant<int,
-  // kind>) makes for k's kind.
-  template <class Kernel>
-  compat::GraphNode<Exec> kind_node(const compat::GraphNode<Exec>& after, const char* label, const KindRange& k,
-                                    const Kernel& kernel) const {
-    return with_row_kind(k.kind, [&](auto kind) -> compat::GraphNode<Exec> {
-      return after.then_parallel_for(label, Kokkos::RangePolicy<Exec>(exec_, k.begin, k.end), kernel(kind));
+  // A node projecting the rows of k after `after`, by the kernel compiled for k's kind.
+  compat::GraphNode<Exec> project_kind(const compat::GraphNode<Exec>& after, const KindRange& k, real h) const {
+    return for_row_kind(k.kind, [&](auto kind) -> compat::GraphNode<Exec> {
+      constexpr int K = decltype(kind)::value;
+      return after.then_parallel_for(
+          "weft::project_rows", Kokkos::RangePolicy<Exec>(exec_, k.begin, k.end),
+          kernels::ProjectRows<Mem, K>{rows_of<K>(), kind_begin_[K], materials_, state_.x, state_.x_start, state_.w,
+                                       lambda_, RowContext<Mem>{targets_, state_.collider_x}, h});
     });
+  }
+
+  // The packed rows of kind K, the rows [kind_begin_[K], kind_begin_[K + 1]) of all.
+  template <int K>
+  const View<PackedRow<K>*>& rows_of() const { return std::get<K>(packed_); }
+
+  // |length / rest - 1| of every distance row at the current positions (-1: rest length 0).
+  View<real*> edge_strains() const {
+    const long nd = kind_begin_[kRowDistance + 1] - kind_begin_[kRowDistance];
+    const auto strain = Kokkos::subview(row_scratch_, Kokkos::make_pair(0L, nd));
+    Kokkos::parallel_for("weft::stats_strain", Kokkos::RangePolicy<Exec>(exec_, 0, nd),
+                         kernels::EdgeStrain<Mem>{rows_of<kRowDistance>(), state_.x, strain});
+    return strain;
   }
 
   // Fraction of its lag a pinned point held back (by the ccd model's fail-safe, or by its bound where the
@@ -346,46 +363,93 @@ class Solver {
   }
 
   void upload_rows(const Scene& sc) {
-    std::vector<Row> rows = build_rows(sc, collider_offset_);
-    const size_t n = sc.points.size();
+    const std::vector<Row> rows = build_rows(sc, collider_offset_);
+    const size_t n = sc.points.size(), nr = rows.size();
     std::vector<char> movable(n);
     for (size_t i = 0; i < n; ++i) movable[i] = w_host_[i] > 0;
-    const Colouring col = colour_greedy(long(rows.size()), long(n), movable, [&](long r, int(&out)[8]) {
+    const Colouring col = colour_greedy(long(nr), long(n), movable, [&](long r, int(&out)[8]) {
       return row_particles(rows[r], out);
     });
-    // Stable counting sort by colour keeps each colour's rows in input order (kinds stay grouped).
-    colour_offset_.assign(col.count + 1, 0);
-    for (int c : col.colour) ++colour_offset_[c + 1];
-    for (int c = 0; c < col.count; ++c) colour_offset_[c + 1] += colour_offset_[c];
-    std::vector<long> fill(colour_offset_.begin(), colour_offset_.end() - 1);
-    std::vector<Row> sorted(rows.size());
-    for (size_t r = 0; r < rows.size(); ++r) sorted[fill[col.colour[r]]++] = rows[r];
-    rows_ = upload(sorted, "weft::rows");
-    colour_kinds_.assign(col.count, {});
-    for (int c = 0; c < col.count; ++c)
-      for (long r = colour_offset_[c]; r < colour_offset_[c + 1]; ++r) {
-        std::vector<KindRange>& runs = colour_kinds_[c];
-        if (runs.empty() || runs.back().kind != sorted[r].kind) runs.push_back({r, r, sorted[r].kind});
-        runs.back().end = r + 1;
-      }
+    // Rows by kind, then colour, each (kind, colour) in input order (a stable counting sort): every kind's
+    // rows are contiguous, and so are a colour's rows of one kind. The order inside a colour changes no
+    // result, since its rows share no moving point.
+    const long nc = col.count;
+    std::vector<long> key_offset(size_t(kRowKinds * nc) + 1, 0);
+    const auto key = [&](size_t r) { return size_t(rows[r].kind * nc + col.colour[r]); };
+    for (size_t r = 0; r < nr; ++r) ++key_offset[key(r) + 1];
+    for (size_t k = 0; k + 1 < key_offset.size(); ++k) key_offset[k + 1] += key_offset[k];
+    std::vector<long> place(nr), fill(key_offset.begin(), key_offset.end() - 1);
+    for (size_t r = 0; r < nr; ++r) place[r] = fill[key(r)]++;
+    for (int k = 0; k <= kRowKinds; ++k) kind_begin_[k] = key_offset[size_t(k * nc)];
+    colour_kinds_.assign(size_t(nc), {});
+    for (long c = 0; c < nc; ++c)
+      for (int k = 0; k < kRowKinds; ++k)
+        if (key_offset[size_t(k * nc + c) + 1] > key_offset[size_t(k * nc + c)])
+          colour_kinds_[size_t(c)].push_back({key_offset[size_t(k * nc + c)], key_offset[size_t(k * nc + c) + 1], k});
+    // Materials, each stored once; a row keeps its index.
+    std::vector<XpbdMaterial> materials;
+    std::map<std::array<uint64_t, 3>, int> material_index;  // by bits: -0 and 0 stay apart
+    std::vector<int> material(nr);
+    for (size_t r = 0; r < nr; ++r) {
+      const XpbdMaterial& m = rows[r].m;
+      static_assert(sizeof(real) == sizeof(uint64_t));
+      std::array<uint64_t, 3> bits;
+      std::memcpy(bits.data(), &m.compliance, 8);
+      std::memcpy(bits.data() + 1, &m.compress_compliance, 8);
+      std::memcpy(bits.data() + 2, &m.damping_ratio, 8);
+      const auto [it, added] = material_index.try_emplace(bits, int(materials.size()));
+      if (added) materials.push_back(m);
+      material[r] = it->second;
+    }
+    materials_ = upload(materials, "weft::materials");
+    std::vector<size_t> by_place(nr);
+    for (size_t r = 0; r < nr; ++r) by_place[size_t(place[r])] = r;
+    upload_packed(rows, material, by_place, std::make_integer_sequence<int, kRowKinds>{});
     tethers_ = upload(build_tethers(sc, w_host_), "weft::tethers");
-    lambda_ = View<real*>("weft::lambda", sorted.size());
-    row_scratch_ = View<real*>("weft::row_scratch", sorted.size());
-    // Jacobi gather lists: for each point, the (row, slot) entries that move it, in row order.
+    lambda_ = View<real*>("weft::lambda", nr);
+    row_scratch_ = View<real*>("weft::row_scratch", nr);
+    // Jacobi gather lists: for each point, the (row, slot) entries that move it, in colour order (the
+    // order of the sum, so it is kept apart from the storage order).
     if (st_.smoothing_iterations > 0) {
+      std::vector<size_t> by_colour(nr);
+      std::vector<long> colour_fill(size_t(nc) + 1, 0);
+      for (size_t r = 0; r < nr; ++r) ++colour_fill[size_t(col.colour[r]) + 1];
+      for (long c = 0; c < nc; ++c) colour_fill[size_t(c) + 1] += colour_fill[size_t(c)];
+      for (size_t r = 0; r < nr; ++r) by_colour[size_t(colour_fill[size_t(col.colour[r])]++)] = r;
       std::vector<long> off(n + 1, 0), slots;
-      for (const Row& r : sorted)
+      for (const Row& r : rows)
         for (int k = 0; k < r.n; ++k) ++off[r.idx[k] + 1];
       for (size_t i = 0; i < n; ++i) off[i + 1] += off[i];
       slots.resize(off[n]);
       std::vector<long> pos(off.begin(), off.end() - 1);
-      for (size_t r = 0; r < sorted.size(); ++r)
-        for (int k = 0; k < sorted[r].n; ++k) slots[pos[sorted[r].idx[k]]++] = long(k) * long(sorted.size()) + long(r);
+      for (size_t r : by_colour)
+        for (int k = 0; k < rows[r].n; ++k) slots[pos[rows[r].idx[k]]++] = long(k) * long(nr) + place[r];
       point_slot_offset_ = upload(off, "weft::point_slot_offset");
       point_slot_ = upload(slots, "weft::point_slot");
-      row_delta_ = View<Vec3*>("weft::row_delta", 5 * sorted.size());
+      row_delta_ = View<Vec3*>("weft::row_delta", 5 * nr);
     }
   }
+
+  // Every kind's packed rows, from the rows in storage order (by_place) and their material indices.
+  template <int... K>
+  void upload_packed(const std::vector<Row>& rows, const std::vector<int>& material, const std::vector<size_t>& by_place,
+                     std::integer_sequence<int, K...>) {
+    const auto one = [&](auto kind) {
+      constexpr int Kind = decltype(kind)::value;
+      std::vector<PackedRow<Kind>> packed;
+      packed.reserve(size_t(kind_begin_[Kind + 1] - kind_begin_[Kind]));
+      for (long p = kind_begin_[Kind]; p < kind_begin_[Kind + 1]; ++p) {
+        const size_t r = by_place[size_t(p)];
+        packed.push_back(pack_row<Kind>(rows[r], material[r]));
+      }
+      std::get<Kind>(packed_) = upload(packed, "weft::rows");
+    };
+    (one(std::integral_constant<int, K>{}), ...);
+  }
+
+  template <int... K>
+  static auto packed_views(std::integer_sequence<int, K...>) -> std::tuple<View<PackedRow<K>*>...>;
+  using PackedViews = decltype(packed_views(std::make_integer_sequence<int, kRowKinds>{}));
 
   Exec exec_;
   SolverSettings st_;
@@ -394,9 +458,10 @@ class Solver {
   SolverState<Exec> state_;
   View<real*> mass_, scratch_, row_scratch_, lambda_;
   std::vector<real> w_host_;
-  View<Row*> rows_;
+  PackedViews packed_;                   // the rows of each kind
+  long kind_begin_[kRowKinds + 1] = {};  // kind K's rows are [kind_begin_[K], kind_begin_[K + 1]) of all
+  View<XpbdMaterial*> materials_;
   View<Tether*> tethers_;
-  std::vector<long> colour_offset_;
   std::vector<std::vector<KindRange>> colour_kinds_;  // per colour, its rows by kind
   View<Vec3**> target_frames_, collider_frames_;
   View<Vec3*> targets_, targets_before_;  // targets at the end and at the start of the substep

@@ -82,18 +82,21 @@ struct UpdateVelocity {
   KOKKOS_INLINE_FUNCTION void operator()(long i) const { v(i) = (x(i) - xs(i)) / h; }
 };
 
-// The rows of kind K (kRowKinds: of any kind) of one colour of Gauss-Seidel: the rows of a colour share
-// no point, so they run in parallel (and so do the kinds of a colour).
+// The rows of kind K of one colour of Gauss-Seidel: the rows of a colour share no point, so they run in
+// parallel (and so do the kinds of a colour). r is the row's index among all rows (its lambda); rows holds
+// the rows of kind K from index `base` on.
 template <class Mem, int K>
 struct ProjectRows {
-  Kokkos::View<Row*, Mem> rows;
+  Kokkos::View<PackedRow<K>*, Mem> rows;
+  long base;
+  Kokkos::View<XpbdMaterial*, Mem> materials;
   Kokkos::View<Vec3*, Mem> x, xs;
   Kokkos::View<real*, Mem> w, lambda;
   RowContext<Mem> ctx;
   real h;
   KOKKOS_INLINE_FUNCTION void operator()(long r) const {
-    if constexpr (K == kRowKinds) project_row(rows(r), x, xs, w, lambda(r), ctx, h);
-    else project_row_of<K>(rows(r), x, xs, w, lambda(r), ctx, h);
+    const PackedRow<K>& row = rows(r - base);
+    project_row_of<K>(row, materials(row.material), x, xs, w, lambda(r), ctx, h);
   }
 };
 
@@ -108,49 +111,25 @@ struct ProjectTethers {
   }
 };
 
-// Jacobi smoothing, first half: every row's correction from the same positions; rows of kind K only (as
-// ProjectRows: kRowKinds for any kind). Row r's correction of its particle k goes to slot k * rows + r, so
-// that a warp's rows write side by side.
+// Jacobi smoothing, first half: every row's correction from the same positions, rows of kind K only (as
+// ProjectRows). Row r's correction of its particle k goes to slot k * total + r (total: rows of every kind),
+// so that a warp's rows write side by side.
 template <class Mem, int K>
 struct JacobiRows {
-  Kokkos::View<Row*, Mem> rows;
+  Kokkos::View<PackedRow<K>*, Mem> rows;
+  long base, total;
+  Kokkos::View<XpbdMaterial*, Mem> materials;
   Kokkos::View<Vec3*, Mem> x, xs, delta;
   Kokkos::View<real*, Mem> w, lambda;
   RowContext<Mem> ctx;
   real h;
   KOKKOS_INLINE_FUNCTION void operator()(long r) const {
-    if constexpr (K == kRowKinds || K == kRowPtPrim) any_kind(r);
-    else {
-      constexpr int N = row_kind_points(K);
-      const Row& row = rows(r);
-      int idx[N];
-      Vec3 p[N], g[N], dx[N];
-      real wi[N];
-      for (int k = 0; k < N; ++k) {
-        idx[k] = row.idx[k];
-        p[k] = x(idx[k]);
-      }
-      const real C = row_eval_of<K>(row, p, ctx, g);
-      for (int k = 0; k < N; ++k) { wi[k] = w(idx[k]); dx[k] = p[k] - xs(idx[k]); }
-      const real dl = xpbd_delta_lambda<N>(C, g, wi, dx, lambda(r), row.m, h);
-      lambda(r) += dl;
-      for (int k = 0; k < N; ++k) delta(k * long(rows.extent(0)) + r) = (wi[k] * dl) * g[k];
-    }
-  }
-  KOKKOS_INLINE_FUNCTION void any_kind(long r) const {
-    const Row row = rows(r);
-    Vec3 p[5];
-    for (int k = 0; k < 5; ++k)
-      if (k < row.n) p[k] = x(row.idx[k]);
-    real C = 0;
-    Vec3 g[5];
-    const int n = row_eval(row, p, ctx, C, g);
-    real wi[5] = {0, 0, 0, 0, 0};
-    Vec3 dx[5];
-    for (int k = 0; k < n; ++k) { wi[k] = w(row.idx[k]); dx[k] = p[k] - xs(row.idx[k]); }
-    const real dl = xpbd_delta_lambda<5>(C, g, wi, dx, lambda(r), row.m, h);
+    const PackedRow<K>& row = rows(r - base);
+    RowState<K> s;
+    evaluate_row(row, x, xs, w, ctx, s);
+    const real dl = xpbd_delta_lambda<RowState<K>::N>(s.C, s.g, s.w, s.dx, lambda(r), materials(row.material), h);
     lambda(r) += dl;
-    for (int k = 0; k < n; ++k) delta(k * long(rows.extent(0)) + r) = (wi[k] * dl) * g[k];
+    for (int k = 0; k < s.count; ++k) delta(k * total + r) = (s.w[k] * dl) * s.g[k];
   }
 };
 
@@ -183,14 +162,15 @@ struct SpeedSquared {
   KOKKOS_INLINE_FUNCTION void operator()(long i) const { out(i) = w(i) > 0 ? dot(v(i), v(i)) : 0.0; }
 };
 
+// |length / rest - 1| of every distance row (-1 for a row of rest length 0).
 template <class Mem>
 struct EdgeStrain {
-  Kokkos::View<Row*, Mem> rows;
+  Kokkos::View<PackedRow<kRowDistance>*, Mem> rows;
   Kokkos::View<Vec3*, Mem> x;
   Kokkos::View<real*, Mem> out;
   KOKKOS_INLINE_FUNCTION void operator()(long r) const {
-    const Row& row = rows(r);
-    out(r) = row.kind == kRowDistance && row.rest > 0 ? abs_(norm(x(row.idx[1]) - x(row.idx[0])) / row.rest - 1) : -1.0;
+    const PackedRow<kRowDistance>& row = rows(r);
+    out(r) = row.rest > 0 ? abs_(norm(x(row.idx[1]) - x(row.idx[0])) / row.rest - 1) : -1.0;
   }
 };
 
