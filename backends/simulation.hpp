@@ -26,7 +26,8 @@ class Simulation {
   virtual int colour_count() const = 0;
   virtual long row_count() const = 0;
   virtual long tether_count() const = 0;
-  // The q-quantile (0..1) of |length / rest - 1| over the distance constraints (0 without any).
+  // The q-quantile (0..1) of the triangles' strain (docs/solver.md, "Strain"; of the distance constraints'
+  // |length / rest - 1| in a scene without triangles; 0 without either).
   virtual real strain_quantile(double q) const = 0;
   // Pairs of cloth triangles that intersect at the current positions (discrete check, adjacent pairs excluded).
   virtual long intersections() const = 0;

@@ -54,11 +54,7 @@ class SimulationOn final : public Simulation {
   long row_count() const override { return solver_.row_count(); }
   long tether_count() const override { return solver_.tether_count(); }
   real strain_quantile(double q) const override {
-    std::vector<real> e = solver_.distance_strains();
-    if (e.empty()) return 0;
-    const size_t k = std::min(e.size() - 1, size_t(q * double(e.size() - 1) + 0.5));
-    std::nth_element(e.begin(), e.begin() + long(k), e.end());
-    return e[k];
+    return Solver<Exec>::quantile(solver_.strains(), q);
   }
   long intersections() const override {
     Lbvh<Exec> bvh;

@@ -57,7 +57,7 @@ KOKKOS_INLINE_FUNCTION constexpr int row_kind_points(int kind) {
 // f(std::integral_constant<int, K>{}) for K = kind (kRowKinds for a kind outside the enum): reaches code
 // compiled for one kind from a kind known at run time.
 template <class F>
-KOKKOS_INLINE_FUNCTION decltype(auto) with_row_kind(int kind, const F& f) {
+inline decltype(auto) with_row_kind(int kind, const F& f) {
   switch (kind) {
     case kRowDistance: return f(std::integral_constant<int, kRowDistance>{});
     case kRowBend: return f(std::integral_constant<int, kRowBend>{});

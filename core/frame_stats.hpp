@@ -10,7 +10,9 @@ struct FrameStats {
   int frame = 0;
   real kinetic_energy = 0;  // J, over points that move
   real max_speed = 0;       // m/s
-  real max_strain = 0;      // max |length / rest - 1| over distance constraints
+  real max_strain = 0;      // largest triangle strain (constraints/triangle_strain.hpp: principal stretches)
+  real p99_strain = 0;      // its 99th percentile over the triangles
+  real max_edge_strain = 0; // max |length / rest - 1| over distance constraints
   real rms_speed = 0;       // m/s, over points that move
   long non_finite = 0;      // points whose position is NaN or Inf
   long contacts = 0;            // contacts found by the last collision pass

@@ -5,6 +5,7 @@
 #pragma once
 #include "constraints/build_rows.hpp"
 #include "constraints/build_tethers.hpp"
+#include "constraints/triangle_strain.hpp"
 #include "core/colouring.hpp"
 #include "core/error.hpp"
 #include "core/frame_stats.hpp"
@@ -17,6 +18,7 @@
 #include "core/stage_timer.hpp"
 
 #include <Kokkos_Core.hpp>
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -52,6 +54,8 @@ class Solver {
   int colour_count() const { return int(colour_kinds_.size()); }
   long row_count() const { return long(lambda_.extent(0)); }
   long tether_count() const { return long(tethers_.extent(0)); }
+  // Bytes of the packed rows on the device (each sweep reads them all).
+  long row_storage_bytes() const { return row_storage_bytes_; }
   void set_collision_stage(std::unique_ptr<CollisionStage<Exec>> c) { collision_ = std::move(c); }
 
   // Advances from frame() to frame() + 1.
@@ -107,8 +111,14 @@ class Solver {
     fs.max_speed = sqrt_(reduce_fixed(exec_, e, MaxOp{}));
     const real sum_v2 = reduce_fixed(exec_, e, SumOp{});
     fs.rms_speed = movable_ > 0 ? sqrt_(sum_v2 / real(movable_)) : 0.0;
-    const auto strain = edge_strains();
-    if (strain.extent(0) > 0) fs.max_strain = max_(real(0), reduce_fixed(exec_, strain, MaxOp{}));  // -1: rest 0
+    const auto edges = edge_strains();
+    if (edges.extent(0) > 0) fs.max_edge_strain = max_(real(0), reduce_fixed(exec_, edges, MaxOp{}));  // -1: rest 0
+    if (tri_rest_.extent(0) > 0) {
+      fs.max_strain = reduce_fixed(exec_, triangle_strains(), MaxOp{});
+    } else {
+      fs.max_strain = fs.max_edge_strain;
+    }
+    fs.p99_strain = quantile(strains(), 0.99);
     const long nk = long(kin_point_.extent(0));
     if (nk > 0) {
       const auto lag = Kokkos::subview(e, Kokkos::make_pair(0L, nk));
@@ -123,12 +133,22 @@ class Solver {
     return fs;
   }
 
-  // |length / rest - 1| of every distance row at the current positions (for percentiles; copied back).
-  std::vector<real> distance_strains() const {
+  // The strain of every cloth triangle at the current positions (constraints/triangle_strain.hpp), or of
+  // every distance row (|length / rest - 1|) in a scene without triangles; copied back, for percentiles.
+  std::vector<real> strains() const {
+    if (tri_rest_.extent(0) > 0) return to_host(triangle_strains());
     std::vector<real> all = to_host(edge_strains()), out;
     for (real e : all)
       if (e >= 0) out.push_back(e);
     return out;
+  }
+
+  // The q-quantile (0..1) of v, nearest rank; 0 for none.
+  static real quantile(std::vector<real> v, double q) {
+    if (v.empty()) return 0;
+    const size_t k = std::min(v.size() - 1, size_t(q * double(v.size() - 1) + 0.5));
+    std::nth_element(v.begin(), v.begin() + long(k), v.end());
+    return v[k];
   }
 
   // One substep.
@@ -279,6 +299,13 @@ class Solver {
   template <int K>
   const View<PackedRow<K>*>& rows_of() const { return std::get<K>(packed_); }
 
+  View<real*> triangle_strains() const {
+    const auto out = Kokkos::subview(row_scratch_, Kokkos::make_pair(0L, long(tri_rest_.extent(0))));
+    Kokkos::parallel_for("weft::stats_triangle_strain", Kokkos::RangePolicy<Exec>(exec_, 0, tri_rest_.extent(0)),
+                         kernels::TriangleStrain<Mem>{tri_rest_, state_.x, out});
+    return out;
+  }
+
   // |length / rest - 1| of every distance row at the current positions (-1: rest length 0).
   View<real*> edge_strains() const {
     const long nd = kind_begin_[kRowDistance + 1] - kind_begin_[kRowDistance];
@@ -407,7 +434,8 @@ class Solver {
     upload_packed(rows, material, by_place, std::make_integer_sequence<int, kRowKinds>{});
     tethers_ = upload(build_tethers(sc, w_host_), "weft::tethers");
     lambda_ = View<real*>("weft::lambda", nr);
-    row_scratch_ = View<real*>("weft::row_scratch", nr);
+    tri_rest_ = upload(triangle_rest_shapes(sc), "weft::triangle_rest");
+    row_scratch_ = View<real*>("weft::row_scratch", std::max(nr, tri_rest_.extent(0)));
     // Jacobi gather lists: for each point, the (row, slot) entries that move it, in colour order (the
     // order of the sum, so it is kept apart from the storage order).
     if (st_.smoothing_iterations > 0) {
@@ -443,6 +471,7 @@ class Solver {
         packed.push_back(pack_row<Kind>(rows[r], material[r]));
       }
       std::get<Kind>(packed_) = upload(packed, "weft::rows");
+      row_storage_bytes_ += long(packed.size() * sizeof(PackedRow<Kind>));
     };
     (one(std::integral_constant<int, K>{}), ...);
   }
@@ -461,7 +490,9 @@ class Solver {
   PackedViews packed_;                   // the rows of each kind
   long kind_begin_[kRowKinds + 1] = {};  // kind K's rows are [kind_begin_[K], kind_begin_[K + 1]) of all
   View<XpbdMaterial*> materials_;
+  long row_storage_bytes_ = 0;
   View<Tether*> tethers_;
+  View<TriangleRest*> tri_rest_;  // for the strain statistics
   std::vector<std::vector<KindRange>> colour_kinds_;  // per colour, its rows by kind
   View<Vec3**> target_frames_, collider_frames_;
   View<Vec3*> targets_, targets_before_;  // targets at the end and at the start of the substep

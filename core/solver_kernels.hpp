@@ -3,6 +3,7 @@
 #pragma once
 #include "constraints/rows.hpp"
 #include "constraints/tether.hpp"
+#include "constraints/triangle_strain.hpp"
 #include "core/real.hpp"
 #include "core/vec.hpp"
 
@@ -171,6 +172,18 @@ struct EdgeStrain {
   KOKKOS_INLINE_FUNCTION void operator()(long r) const {
     const PackedRow<kRowDistance>& row = rows(r);
     out(r) = row.rest > 0 ? abs_(norm(x(row.idx[1]) - x(row.idx[0])) / row.rest - 1) : -1.0;
+  }
+};
+
+template <class Mem>
+struct TriangleStrain {
+  Kokkos::View<TriangleRest*, Mem> tris;
+  Kokkos::View<Vec3*, Mem> x;
+  Kokkos::View<real*, Mem> out;
+  KOKKOS_INLINE_FUNCTION void operator()(long t) const {
+    const TriangleRest& r = tris(t);
+    const real dm[4] = {r.dm_inv[0], r.dm_inv[1], r.dm_inv[2], r.dm_inv[3]};
+    out(t) = triangle_strain(x(r.p[0]), x(r.p[1]), x(r.p[2]), dm);
   }
 };
 

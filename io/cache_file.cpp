@@ -18,7 +18,7 @@ using h5::Handle;
 using Dims = std::vector<hsize_t>;
 
 // The per-frame statistics table: one compound row per frame, fields named as in FrameStats.
-static_assert(sizeof(FrameStats) == 208, "FrameStats changed: update kStatsFields");
+static_assert(sizeof(FrameStats) == 224, "FrameStats changed: update kStatsFields");
 enum class Kind { I32, I64, F64 };
 struct StatsField {
   const char* name;
@@ -52,6 +52,8 @@ const StatsField kStatsFields[] = {
     {"seconds_broad_phase", offsetof(FrameStats, seconds_broad_phase), Kind::F64},
     {"seconds_narrow_phase", offsetof(FrameStats, seconds_narrow_phase), Kind::F64},
     {"seconds_contact_colouring", offsetof(FrameStats, seconds_contact_colouring), Kind::F64},
+    {"p99_strain", offsetof(FrameStats, p99_strain), Kind::F64},
+    {"max_edge_strain", offsetof(FrameStats, max_edge_strain), Kind::F64},
 };
 
 // In memory: FrameStats. In the file: the same fields packed, little-endian.

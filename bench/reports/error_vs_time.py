@@ -332,7 +332,7 @@ def write_markdown(path, rows, meta):
           "**error** = RMS over points of |x - x_ref| at a checkpoint frame / diagonal of the reference garment's "
           "bounding box at that frame; `error_mean` is the mean over the checkpoints. **ms/frame**: median wall time "
           "per frame from the cache (`/stats/seconds`), first computed frame left out (the CSV has the mean too). **max strain**: max over "
-          "frames of `max_strain` (|length / rest - 1| over distance constraints). **intersections**: cloth "
+          "frames of `max_strain` (the triangles' largest principal stretch - 1, docs/solver.md). **intersections**: cloth "
           f"triangle pairs that intersect at frame {checkpoints[-1]} (`weft check-intersections frame.obj`). "
           "**KE**: kinetic energy (J) at the last frame and its mean over the last quarter of frames.\n\n",
           f"Runs are killed after {timeout:g} s (`timeout`) or once max strain passes {diverge:g} (`diverged`); "

@@ -25,13 +25,15 @@ import weftlib as W  # noqa: E402
 
 PRESETS = {"quick": {"res_scale": 0.25, "timeout": 240}, "full": {"res_scale": 1.0, "timeout": 3600}}
 REST_SPEED = 0.05   # m/s: rms speed at the last frame of a case that should have come to rest
-STRAIN = 0.10       # max |length / rest - 1| allowed to a production cloth (stretch stiffness 1e10 N/m)
+STRAIN = 0.10       # max triangle strain (largest principal stretch - 1) allowed to a production cloth
+TWIST_P99 = 0.6     # twist: 99th-percentile strain at the last frame; a tightly wound rope of this sheet needs
+                    # about 0.4 at its outer fibres, so the limit is what the twist itself imposes, with room
 SQUEEZE = 0.75      # layer-stack-squeezed: the plate stops at this fraction of the room the layers need
 
 
 # Cases. `scene(ctx)` returns the scene argument of `weft run`; criteria: intersections (0 at every checked
-# frame), strain (limit), rest (rms speed at the last frame <= REST_SPEED), penetration (0 points inside the
-# moving collider at every frame).
+# frame), strain (limit on the max over frames), p99_strain (limit on the last frame's 99th percentile), rest
+# (rms speed at the last frame <= REST_SPEED), penetration (0 points inside the moving collider at every frame).
 def cases():
     return [
         {"name": "compliance-0-stretch", "what": "drape-sphere; distance (stretch) rows with compliance and "
@@ -57,10 +59,10 @@ def cases():
          "criteria": {"intersections": True, "strain": STRAIN, "penetration": True}, "inside": box_inside},
         {"name": "twist", "what": "built-in twist: each edge turns twice, in opposite directions (4 turns "
          "relative), over frames 1-97, held to 121", "scene": lambda c: "builtin:twist", "res": 48, "args": [],
-         "criteria": {"intersections": True}},
+         "criteria": {"intersections": True, "p99_strain": TWIST_P99}},
         {"name": "twist-4-turns-each", "what": "twist variant: each edge turns 4 times (8 relative) at the "
          "built-in speed, over frames 1-193, held to 217 (pin targets rewritten in the scene file)",
-         "scene": twist_4, "res": 48, "args": [], "criteria": {"intersections": True}},
+         "scene": twist_4, "res": 48, "args": [], "criteria": {"intersections": True, "p99_strain": TWIST_P99}},
         {"name": "layer-stack", "what": "built-in: 6 layers dropped on the ground, the top one 20x heavier",
          "scene": lambda c: "builtin:layer-stack", "res": 24, "args": [],
          "criteria": {"intersections": True, "strain": STRAIN, "rest": True}},
@@ -198,6 +200,7 @@ def run_case(case, ctx, a):
                     f"{c['settings']['collision_passes']} passes",
         "non_finite_points": max(r.non_finite_points, int(np.max(st["non_finite"]))),
         "max_strain": float(np.max(st["max_strain"])), "max_strain_frame": frames[int(np.argmax(st["max_strain"]))],
+        "p99_strain_last": float(st["p99_strain"][-1]) if "p99_strain" in st.dtype.names else None,
         "ke_last": float(st["kinetic_energy"][-1]), "ke_max": float(np.max(st["kinetic_energy"])),
         "rms_speed_last": float(st["rms_speed"][-1]), "max_speed": float(np.max(st["max_speed"])),
         "ms_per_frame": 1e3 * float(np.mean(st["seconds"][1:])) if len(frames) > 1 else None,
@@ -229,6 +232,8 @@ def run_case(case, ctx, a):
         why.append(f"intersections (max {fig['intersections_max']})")
     if cr.get("strain") is not None and not fig["max_strain"] <= cr["strain"]:
         why.append(f"max strain {fig['max_strain']:.3g} > {cr['strain']:g}")
+    if cr.get("p99_strain") is not None and not (fig["p99_strain_last"] is not None and fig["p99_strain_last"] <= cr["p99_strain"]):
+        why.append(f"p99 strain at the last frame {W.fmt(fig['p99_strain_last'])} > {cr['p99_strain']:g}")
     if cr.get("rest") and not fig["rms_speed_last"] <= REST_SPEED:
         why.append(f"not at rest: rms speed {fig['rms_speed_last']:.3g} m/s > {REST_SPEED:g}")
     if cr.get("penetration") and fig.get("penetrating_points_max", 0) > 0:
@@ -246,6 +251,8 @@ def criteria_text(cr):
         t.append("0 intersections")
     if cr.get("strain") is not None:
         t.append(f"strain <= {cr['strain']:g}")
+    if cr.get("p99_strain") is not None:
+        t.append(f"p99 strain at the last frame <= {cr['p99_strain']:g}")
     if cr.get("rest"):
         t.append(f"rest (rms speed <= {REST_SPEED:g} m/s)")
     if cr.get("penetration"):
@@ -308,19 +315,19 @@ def main():
              f.get("res") or f"x{ctx['res_scale']:g}",
              f.get("triangles", "-"), f.get("frames", "-"), f.get("non_finite_points", "-"),
              W.fmt(f.get("intersections_last")), W.fmt(f.get("intersections_max")), W.fmt(f.get("max_strain")),
-             W.fmt(f.get("ke_last")), W.fmt(f.get("rms_speed_last")), W.fmt(f.get("penetrating_points_max")),
+             W.fmt(f.get("p99_strain_last")), W.fmt(f.get("ke_last")), W.fmt(f.get("rms_speed_last")), W.fmt(f.get("penetrating_points_max")),
              W.fmt(f.get("ms_per_frame"), ".1f"), "; ".join(f["fail_reasons"]) or "-"] for f in figs]
     md = [f"# Stability: stiff and extreme cases\n\nweft {info['version']} (`{weft}`), backend {a.backend}"
           + (f", {a.threads} threads" if a.threads else "") + f", resolution x{ctx['res_scale']:g}.\n\n",
           W.md_table(["case", "result", "status", "res", "triangles", "frames", "NaN points", "intersections (last)",
-                      "intersections (max)", "max strain", "KE last (J)", "rms speed last (m/s)",
+                      "intersections (max)", "max strain", "p99 strain (last)", "KE last (J)", "rms speed last (m/s)",
                       "points in collider", "ms/frame", "why it failed"], rows),
           "\n## Cases and criteria\n\n",
           W.md_table(["case", "what", "criteria", "command"],
                      [[f["case"], f["what"], f["criteria"], f"`{f.get('command', '-')}`"] for f in figs]),
           f"\nIntersections are counted at {a.intersection_frames} evenly spaced frames (the last included) with "
-          "`weft check-intersections frame.obj`; max strain is the largest |length / rest - 1| of a distance "
-          "constraint over every frame; runs are killed after the time-out or once max strain passes "
+          "`weft check-intersections frame.obj`; max strain is the largest triangle strain (largest principal "
+          "stretch - 1, docs/solver.md) over every frame, p99 strain its 99th percentile over the triangles at the last frame; runs are killed after the time-out or once max strain passes "
           f"{a.diverge_strain:g}. OUT is {out}. `res` is the built-in scene's --res, or the scale applied to the "
           "grid resolutions of a JSON variant.\n"]
     (out / "stability.md").write_text("".join(md))
