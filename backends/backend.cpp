@@ -52,8 +52,12 @@ Backend default_backend() {
   return Backend::Serial;
 }
 
-Runtime::Runtime(int threads, int device) { compat::initialize(threads, device); }
-Runtime::~Runtime() { Kokkos::finalize(); }
+Runtime::Runtime(int threads, int device) : owns_(!Kokkos::is_initialized()) {
+  if (owns_) compat::initialize(threads, device);
+}
+Runtime::~Runtime() {
+  if (owns_) Kokkos::finalize();
+}
 
 std::vector<std::string> describe_devices() {
   std::vector<std::string> r;
