@@ -1,5 +1,7 @@
-// `weft bench` from the command line: settings by name as weft run takes them, one JSON key per figure. Bench
-// times; the tests check only what it ran and wrote.
+// `weft bench` from the command line: settings by name as weft run takes them, one JSON key per figure, and
+// the paper's schedules from the table weft run uses (core/schedules.hpp). Bench times; the tests check only
+// what it ran and wrote.
+#include "core/schedules.hpp"
 #include "tests/cli_fixture.hpp"
 
 #include <string>
@@ -26,6 +28,23 @@ TEST(WEFT_TEST_SUITE, cli_bench_takes_settings_by_name_and_writes_each_key_once)
   EXPECT_EQ(text.find("\"collision_passes\""), text.rfind("\"collision_passes\"")) << text;
   EXPECT_EQ(weft("bench builtin:drape-sphere --res 4 --frames 1 --set substep=3"), 1);  // as weft run
   EXPECT_NE(weft.output.find("unknown setting 'substep'"), std::string::npos) << weft.output;
+}
+
+// --schedules paper: a row per schedule of the table, with its settings; --schedules takes nothing else.
+TEST(WEFT_TEST_SUITE, cli_bench_schedules_paper_runs_each_named_schedule) {
+  WEFT_NEED_CLI();
+  const ScratchDir dir("cli_bench_schedules");
+  Cli weft(dir);
+  ASSERT_EQ(weft("bench builtin:hanging-sheet --res 2 --frames 1 --warmup 0 --schedules paper --json " +
+                 dir.file("bench.json")), 0) << weft.output;
+  const std::string text = dir.read("bench.json");
+  for (const Schedule& s : kSchedules)
+    EXPECT_NE(text.find("{\"schedule\": \"" + std::string(s.name) + "\", \"iterations\": " +
+                        std::to_string(s.iterations) + ", \"collision_passes\": " +
+                        std::to_string(s.collision_passes) + ", \"substeps\": " + std::to_string(s.substeps) + ","),
+              std::string::npos) << s.name << "\n" << text;
+  EXPECT_EQ(weft("bench builtin:hanging-sheet --res 2 --schedules all"), 2);
+  EXPECT_NE(weft.output.find("--schedules is 'paper' or 'current'"), std::string::npos) << weft.output;
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // Commands that read what a run left: `weft compare` (bits or ULPs between two caches), `weft info` (a scene
-// or cache file), `weft check-intersections` (a mesh).
+// or cache file, or this build and its named schedules), `weft check-intersections` (a mesh).
+#include "core/schedules.hpp"
 #include "io/builtin_scenes.hpp"
 #include "io/cache_file.hpp"
 #include "io/scene_file.hpp"
@@ -68,6 +69,19 @@ TEST(WEFT_TEST_SUITE, cli_info_describes_scene_and_cache_files) {
   std::ofstream(dir.file("text.h5")) << "text";
   EXPECT_EQ(weft("info " + dir.file("text.h5")), 2);
   EXPECT_NE(weft.output.find("not an HDF5 file"), std::string::npos) << weft.output;
+}
+
+// weft info names each row of core/schedules.hpp, one line each, for the report scripts to read.
+TEST(WEFT_TEST_SUITE, cli_info_lists_the_named_schedules) {
+  WEFT_NEED_CLI();
+  const ScratchDir dir("cli_info_schedules");
+  Cli weft(dir);
+  ASSERT_EQ(weft("info"), 0) << weft.output;
+  for (const Schedule& s : kSchedules)
+    EXPECT_NE(weft.output.find("\nschedule " + std::string(s.name) + ": substeps " + std::to_string(s.substeps) +
+                               ", iterations " + std::to_string(s.iterations) + ", collision passes " +
+                               std::to_string(s.collision_passes) + "\n"),
+              std::string::npos) << weft.output;
 }
 
 TEST(WEFT_TEST_SUITE, cli_check_intersections_counts_a_static_obj_mesh) {

@@ -1,7 +1,8 @@
 // `weft run` from the command line: global options before or after the subcommand, a cache cut short (by a
-// stop or SIGINT) and resumed equals a straight run, outputs that cannot be written leave nothing, settings
-// by name, and each run switch is recorded in the cache and checked on resume.
+// stop or SIGINT) and resumed equals a straight run, outputs that cannot be written leave nothing, named
+// schedules and settings by name, and each run switch is recorded in the cache and checked on resume.
 #include "core/hash.hpp"
+#include "core/schedules.hpp"
 #include "io/cache_file.hpp"
 #include "io/hdf5_util.hpp"
 #include "tests/cli_fixture.hpp"
@@ -147,6 +148,28 @@ TEST(WEFT_TEST_SUITE, cli_run_set_is_kept_in_the_cache_and_a_resume_with_other_v
   EXPECT_NE(weft.output.find("unknown setting 'substep'"), std::string::npos) << weft.output;
   EXPECT_EQ(weft(run + "--set help"), 0);
   EXPECT_NE(weft.output.find("stretch_stiffness_scale"), std::string::npos) << weft.output;
+}
+
+// weft run --schedule NAME: the row of core/schedules.hpp, recorded in the cache as plain settings; a name
+// the table lacks is refused with the table's names.
+TEST(WEFT_TEST_SUITE, cli_run_schedule_sets_the_named_rows_settings) {
+  WEFT_NEED_CLI();
+  const ScratchDir dir("cli_schedule");
+  Cli weft(dir);
+  for (const Schedule& s : kSchedules) {
+    SCOPED_TRACE(s.name);
+    ASSERT_EQ(weft("run builtin:hanging-sheet --res 2 --frames 1-2 --quiet --schedule " + std::string(s.name) + " -o " +
+                   dir.file(std::string(s.name) + ".h5")),
+              0) << weft.output;
+    ASSERT_EQ(weft("info " + dir.file(std::string(s.name) + ".h5")), 0) << weft.output;
+    EXPECT_NE(weft.output.find("substeps " + std::to_string(s.substeps) + ", iterations " +
+                               std::to_string(s.iterations) + ", collision passes " +
+                               std::to_string(s.collision_passes) + ","),
+              std::string::npos) << weft.output;
+  }
+  EXPECT_EQ(weft("run builtin:hanging-sheet --res 2 --frames 1-2 --schedule paper-0"), 2);
+  EXPECT_NE(weft.output.find("unknown schedule 'paper-0' (" + schedule_names() + ")"), std::string::npos)
+      << weft.output;
 }
 
 // A run switch: `base on` writes a cache whose `weft info` shows `shown`; a resume without the switch is refused
