@@ -2,6 +2,7 @@
 // (docs/performance.md). Reports numbers; asserts nothing.
 #include "apps/cli.hpp"
 #include "backends/simulation.hpp"
+#include "core/schedules.hpp"
 #include "io/scene_overrides.hpp"
 #include "io/scene_source.hpp"
 #include "io/trimesh.hpp"
@@ -18,8 +19,6 @@ struct Options {
   std::vector<std::string> set;  // settings by name (weft run --set)
   int res = 0, frames = 10, warmup = -1;  // -1: 16 with --schedules paper (the skirt is in contact by then), else 2
 };
-
-struct Schedule { const char* name; int iterations, passes, substeps; };
 
 struct Result {
   std::string schedule;
@@ -42,12 +41,13 @@ struct Result {
 // Each schedule runs twice over the same frames (the bits do not depend on profiling): once as a user's run
 // does, for the time per frame and the memory, and once with every stage fenced, for the stage times. A
 // fence after each stage keeps the host from queueing the next launches while the device works, so the
-// fenced frame is slower than the real one.
-Result bench_one(Backend b, Scene scene, const Options& o, const Schedule& sc) {
+// fenced frame is slower than the real one. `schedule` names a row of core/schedules.hpp, or is "scene": the
+// scene's own settings.
+Result bench_one(Backend b, Scene scene, const Options& o, const std::string& schedule) {
   SolverSettings& st = scene.settings;
-  if (sc.substeps > 0) { st.iterations = sc.iterations; st.collision_passes = sc.passes; st.substeps = sc.substeps; }
+  if (schedule != "scene") apply_schedule(schedule, st);
   st.frame_end = st.frame_start + o.warmup + o.frames;
-  Result r{sc.name, st.iterations, st.collision_passes, st.substeps};
+  Result r{schedule, st.iterations, st.collision_passes, st.substeps};
   // A simulation of the scene past its warm-up frames, profiled or not.
   auto warmed_up = [&](bool profile) {
     st.profile = profile;
@@ -110,10 +110,14 @@ int bench(const GlobalOptions& g, const Options& o) {
   warn_about_thickness(scene);
   Options opt = o;
   if (opt.warmup < 0) opt.warmup = o.schedules == "paper" ? 16 : 2;
-  std::vector<Schedule> schedules;
-  if (o.schedules == "paper") schedules = {{"paper-1", 200, 20, 1}, {"paper-2", 20, 2, 10}, {"paper-3", 10, 1, 20}};
-  else if (o.schedules == "current") schedules = {{"scene", 0, 0, 0}};
-  else throw Error("--schedules is 'paper' or 'current'", 2);
+  std::vector<std::string> schedules;
+  if (o.schedules == "paper") {
+    for (const Schedule& s : kSchedules) schedules.push_back(s.name);
+  } else if (o.schedules == "current") {
+    schedules = {"scene"};
+  } else {
+    throw Error("--schedules is 'paper' or 'current'", 2);
+  }
   const bool proximity = scene.settings.contact_model == ContactModel::Proximity;
   const char* model = contact_model_name(scene.settings.contact_model);
   const char* contacts = proximity || scene.settings.jacobi_contacts ? "jacobi" : "gauss-seidel";
@@ -127,7 +131,7 @@ int bench(const GlobalOptions& g, const Options& o) {
               "pass", "sub", "ms/frame", "fenced", "constraints", "ms/col.pass", "contacts", "smoothing", "fail-safe",
               proximity ? "queries" : "rounds", "#contacts", "mem MiB", "max strain", "p99 strain", "isect", "pin lag m");
   std::vector<Result> results;
-  for (const Schedule& sc : schedules) {
+  for (const std::string& sc : schedules) {
     const Result r = bench_one(b, scene, opt, sc);
     std::printf("%-9s %5d %5d %5d %10.2f %8.2f %12.2f %13.3f %10.2f %10.2f %10.2f %8.1f %10.0f %9.1f %10.3f %10.4f %6ld %9.2e\n",
                 r.schedule.c_str(), r.iterations, r.passes, r.substeps, r.ms_frame, r.ms_frame_fenced, r.ms_constraints,

@@ -1,7 +1,9 @@
-// `weft info`: versions, backends and devices; `weft info FILE`: what a scene or cache file holds.
+// `weft info`: versions, backends, devices and the named schedules (core/schedules.hpp); `weft info FILE`:
+// what a scene or cache file holds.
 #include "apps/cli.hpp"
 #include "core/hash.hpp"
 #include "core/kokkos_compat.hpp"
+#include "core/schedules.hpp"
 #include "io/cache_file.hpp"
 #include "io/hdf5_util.hpp"
 #include "io/scene_file.hpp"
@@ -111,7 +113,8 @@ int describe_file(const std::string& path) {
 
 void add_info(CLI::App& app, const GlobalOptions& g, Action& run) {
   static std::string file;
-  auto* cmd = app.add_subcommand("info", "print versions, enabled backends and devices, or what a .h5 file holds");
+  auto* cmd = app.add_subcommand("info", "print versions, enabled backends, devices and named schedules, or what a .h5 "
+                                         "file holds");
   cmd->add_option("file", file, "a weft scene or cache (.h5): print its kind, version, counts, frames, settings");
   cmd->callback([&g, &run] {
     run = [&g] {
@@ -124,6 +127,10 @@ void add_info(CLI::App& app, const GlobalOptions& g, Action& run) {
       for (Backend c : compiled_backends()) std::cout << " " << backend_name(c);
       std::cout << "\nselected backend: " << backend_name(b) << "\n";
       for (const auto& line : describe_devices()) std::cout << line << "\n";
+      // The named schedules, for the report scripts (bench/reports/error_vs_time.py) to take from here.
+      for (const Schedule& s : kSchedules)
+        std::cout << "schedule " << s.name << ": substeps " << s.substeps << ", iterations " << s.iterations
+                  << ", collision passes " << s.collision_passes << "\n";
       return 0;
     };
   });

@@ -5,6 +5,7 @@
 #include "backends/body_cleaning.hpp"
 #include "backends/simulation.hpp"
 #include "core/hash.hpp"
+#include "core/schedules.hpp"
 #include "io/cache_file.hpp"
 #include "io/geo_writeback.hpp"
 #include "io/scene_file.hpp"
@@ -24,13 +25,16 @@
 namespace weft::cli {
 namespace {
 
-// The paper's three schedules: (iterations, collision passes, substeps).
-void apply_schedule(const std::string& name, SolverSettings& st) {
-  if (name.empty()) return;
-  if (name == "paper-1") { st.iterations = 200; st.collision_passes = 20; st.substeps = 1; }
-  else if (name == "paper-2") { st.iterations = 20; st.collision_passes = 2; st.substeps = 10; }
-  else if (name == "paper-3") { st.iterations = 10; st.collision_passes = 1; st.substeps = 20; }
-  else throw Error("unknown schedule '" + name + "' (paper-1, paper-2, paper-3)", 2);
+// "paper-1 (200 it, 20 passes, 1 substep), paper-2 (20, 2, 10), ...": the units on the first only.
+std::string schedule_help() {
+  std::string h;
+  for (const Schedule& s : kSchedules) {
+    const bool first = h.empty();
+    h += (first ? "" : ", ") + std::string(s.name) + " (" + std::to_string(s.iterations) + (first ? " it, " : ", ") +
+         std::to_string(s.collision_passes) + (first ? " passes, " : ", ") + std::to_string(s.substeps) +
+         (first ? " substep)" : ")");
+  }
+  return h;
 }
 
 void apply_frames(const std::string& range, SolverSettings& st) {
@@ -153,7 +157,8 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   Scene scene = io::load_scene(o.scene, io::BuiltinOptions{o.res});
   SolverSettings& st = scene.settings;
   apply_frames(o.frames, st);
-  apply_schedule(o.schedule, st);
+  if (!o.schedule.empty() && !apply_schedule(o.schedule, st))
+    throw Error("unknown schedule '" + o.schedule + "' (" + schedule_names() + ")", 2);
   std::vector<io::SceneOverride> overrides;
   for (const std::string& kv : o.set) overrides.push_back(io::parse_override(kv));
   io::apply_overrides(scene, overrides);
@@ -273,7 +278,7 @@ void add_run(CLI::App& app, const GlobalOptions& g, Action& action) {
   cmd->add_option("scene", o->scene, "builtin:NAME, a .json scene or a .h5 scene file")->required();
   cmd->add_option("--res", o->res, "resolution of a built-in scene (quads along a side)")->check(CLI::PositiveNumber);
   cmd->add_option("--frames", o->frames, "frame range A-B (A is the initial state)");
-  cmd->add_option("--schedule", o->schedule, "paper-1 (200 it, 20 passes, 1 substep), paper-2 (20, 2, 10), paper-3 (10, 1, 20)");
+  cmd->add_option("--schedule", o->schedule, schedule_help());
   cmd->add_option("--substeps", o->substeps, "substeps per frame")->check(CLI::PositiveNumber);
   cmd->add_option("--iterations", o->iterations, "constraint iterations per substep")->check(CLI::NonNegativeNumber);
   cmd->add_option("--collision-passes", o->collision_passes, "collision passes per substep")->check(CLI::NonNegativeNumber);

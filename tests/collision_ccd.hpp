@@ -4,13 +4,12 @@
 #include "collision/ccd_batch.hpp"
 #include "collision/ccd_proximity.hpp"
 #include "collision/ccd_query_file.hpp"
+#include "tests/scratch_dir_fixture.hpp"
 
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <unistd.h>
 
 namespace {
 
@@ -472,23 +471,7 @@ TEST(WEFT_TEST_SUITE, proximity_is_no_farther_than_sampled_points_on_device) {
   }
 }
 
-// A scratch folder for reader tests, removed afterwards.
-struct ScratchDir {
-  std::filesystem::path root;
-  ScratchDir() {
-    root = std::filesystem::temp_directory_path() /
-           ("weft_ccd_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::remove_all(root);
-  }
-  ~ScratchDir() { std::filesystem::remove_all(root); }
-  std::string write(const std::string& rel, const std::string& text) const {
-    const auto p = root / rel;
-    std::filesystem::create_directories(p.parent_path());
-    std::ofstream(p) << text;
-    return p.string();
-  }
-};
+using weft::test::ScratchDir;
 
 std::string error_of(const std::string& path) {
   try {
@@ -506,7 +489,7 @@ std::string rows_text(int n, const std::string& row) {
 }
 
 TEST(WEFT_TEST_SUITE, ccd_query_file_reader) {
-  const ScratchDir dir;
+  const ScratchDir dir("ccd_query_file");
   // Exact rationals (a 2^111 denominator, a 53-bit numerator), the truth column, the kind from the folder.
   const std::string good = dir.write("fam/edge-edge/q.csv",
                                      "1,2,-3,2596148429267413814265248164610048,9007199254740991,4,1\r\n" +
@@ -551,13 +534,13 @@ TEST(WEFT_TEST_SUITE, ccd_query_file_reader) {
   expect_error("e/vf/f_vf.csv", "0,1,0,1,0,1,2\n", ":1: truth '2'");
   expect_error("e/vf/g_vf.csv", rows_text(3, "0,1,0,1,0,1,1") + "0,1,0,1,0,1,0\n", ":4: truth differs");
   expect_error("e/vf/h_vf.csv", rows_text(9, "0,1,0,1,0,1"), ":9: incomplete query");
-  EXPECT_NE(error_of((dir.root / "missing_vf.csv").string()).find("cannot open"), std::string::npos);
+  EXPECT_NE(error_of(dir.file("missing_vf.csv")).find("cannot open"), std::string::npos);
 
   // Listing: every *.csv below the folder, sorted.
-  const auto files = weft::find_ccd_query_files((dir.root / "case").string());
+  const auto files = weft::find_ccd_query_files(dir.file("case"));
   ASSERT_EQ(files.size(), 1u);
   EXPECT_EQ(files[0], scal);
-  EXPECT_THROW(weft::find_ccd_query_files((dir.root / "nowhere").string()), std::runtime_error);
+  EXPECT_THROW(weft::find_ccd_query_files(dir.file("nowhere")), std::runtime_error);
 }
 
 }  // namespace

@@ -1,13 +1,16 @@
-// Checks the io_* topics share: messages that contain a part, the InputError a call throws, attribute maps
-// that are equal.
+// Checks the io_* and cli_* topics share: messages that contain a part, the InputError a call throws,
+// attribute maps that are equal, a PNG's size.
 #pragma once
 #include "core/error.hpp"
 #include "io/houdini_geo.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <fstream>
 #include <functional>
 #include <string>
+#include <utility>
 
 namespace weft::test {
 
@@ -36,6 +39,17 @@ inline void expect_same_attributes(const io::AttributeMap& a, const io::Attribut
     EXPECT_EQ(x.ints, y.ints) << name;
     EXPECT_EQ(x.strings, y.strings) << name;
   }
+}
+
+// Width and height from a PNG's signature and IHDR chunk; {0, 0} when the file is not a PNG.
+inline std::pair<int, int> png_size(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char b[24] = {};
+  if (!in.read(reinterpret_cast<char*>(b), 24)) return {0, 0};
+  const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (std::memcmp(b, signature, 8) != 0 || std::memcmp(b + 12, "IHDR", 4) != 0) return {0, 0};
+  const auto be32 = [&](int at) { return int(b[at]) << 24 | int(b[at + 1]) << 16 | int(b[at + 2]) << 8 | int(b[at + 3]); };
+  return {be32(16), be32(20)};
 }
 
 }  // namespace weft::test

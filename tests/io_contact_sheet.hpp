@@ -1,24 +1,19 @@
 // Contact sheets (io/contact_sheet.cpp), read back pixel by pixel from the PNG: a depth test (a collider behind
 // cloth stays hidden even where sorting triangles would draw it on top; one in front covers the cloth), no
 // cracks between neighbouring triangles, both sides of the cloth lit and told apart, the cloth framed (not a
-// ground plane around it) unless frame_all, the same bytes twice, and `weft render`'s view options.
-#include "io/builtin_scenes.hpp"
-#include "io/cache_file.hpp"
+// ground plane around it) unless frame_all, the same bytes twice. `weft render`'s view options are cli_render.
 #include "io/contact_sheet.hpp"
 #include "tests/scratch_dir_fixture.hpp"
 
 #include <cairo.h>
-#include <sys/wait.h>
 
 #include <cstdint>
 #include <cstdlib>
-#include <filesystem>
 #include <string>
 #include <vector>
 
 namespace {
 
-namespace fs = std::filesystem;
 using namespace weft;
 using namespace weft::io;
 using test::ScratchDir;
@@ -210,39 +205,6 @@ TEST(WEFT_TEST_SUITE, sheet_is_the_same_bytes_twice) {
   const std::string a = dir.read("a.png");
   EXPECT_GT(a.size(), 1000u);
   EXPECT_EQ(a, dir.read("b.png"));
-}
-
-// `weft render --view/--frame-all/--zoom` (the binary, when it is built).
-TEST(WEFT_TEST_SUITE, sheet_cli_takes_view_options) {
-  const std::string bin = std::string(WEFT_BIN_DIR) + "/weft";
-  if (!fs::exists(bin)) GTEST_SKIP() << bin << " is not built";
-  const ScratchDir dir("sheet_cli");
-  const Scene s = make_builtin_scene("drape-sphere", {4});
-  const std::string cache = dir.file("c.h5");
-  {
-    CacheWriter w(cache, CacheHeader{s.name, "serial", s.points.size(), s.triangles, s.settings});
-    for (int f = s.settings.frame_start; f < s.settings.frame_start + 3; ++f) {
-      FrameStats st;
-      st.frame = f;
-      std::vector<Vec3> x = s.points.position;
-      for (Vec3& p : x) p.y -= 0.02 * (f - s.settings.frame_start);
-      w.append(st, x, s.points.velocity);
-    }
-    w.close();
-  }
-  const auto weft = [&](const std::string& args) {
-    const int st = std::system((bin + " render " + cache + " --scene builtin:drape-sphere --res 4 --count 2 --cell 96 " +
-                                args + " > '" + dir.file("log") + "' 2>&1").c_str());
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  };
-  ASSERT_EQ(weft("-o " + dir.file("standard.png")), 0) << dir.read("log");
-  ASSERT_EQ(weft("-o " + dir.file("top.png") + " --view top --frame-all --zoom 1.5"), 0) << dir.read("log");
-  EXPECT_EQ(Image(dir.file("top.png")).width, 2 * 96);
-  EXPECT_NE(dir.read("standard.png"), dir.read("top.png"));
-  for (const char* bad : {"--view diagonal", "--zoom 0", "--zoom -2"}) {
-    EXPECT_NE(weft("-o " + dir.file("bad.png") + " " + bad), 0) << bad;
-    EXPECT_FALSE(fs::exists(dir.file("bad.png"))) << bad;
-  }
 }
 
 }  // namespace

@@ -1,50 +1,26 @@
 // The demo: builtin:demo (a figure of capsules in a skirt of three layers sewn from gores) has its layers,
 // panels, stitches, a pinned waist, an animated body and a
-// size that scales; a few frames stay finite with a pinned hash; contact sheets are valid PNGs; `weft demo`
-// and `weft render` write their files.
+// size that scales; a few frames stay finite with a pinned hash; contact sheets are valid PNGs. `weft demo`
+// and `weft render` writing their files are cli_render.
 #include "io/builtin_scenes.hpp"
 #include "io/cache_file.hpp"
 #include "io/contact_sheet.hpp"
 #include "io/demo_scene.hpp"
+#include "tests/io_checks_fixture.hpp"
+#include "tests/scratch_dir_fixture.hpp"
 #include "tests/solver_scene_fixture.hpp"
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <set>
 #include <string>
+#include <utility>
 
 namespace {
 
-namespace fs = std::filesystem;
 using namespace weft;
 using namespace weft::io;
-
-struct DemoDir {
-  fs::path path;
-  explicit DemoDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("weft_io_demo_" + std::to_string(::getpid()) + "_" + name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~DemoDir() { fs::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-};
-
-// Width and height from a PNG's signature and IHDR chunk; {0, 0} when the file is not a PNG.
-std::pair<int, int> png_size(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  unsigned char b[24] = {};
-  if (!in.read(reinterpret_cast<char*>(b), 24)) return {0, 0};
-  const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (std::memcmp(b, signature, 8) != 0 || std::memcmp(b + 12, "IHDR", 4) != 0) return {0, 0};
-  const auto be32 = [&](int at) { return int(b[at]) << 24 | int(b[at + 1]) << 16 | int(b[at + 2]) << 8 | int(b[at + 3]); };
-  return {be32(16), be32(20)};
-}
+using weft::test::png_size;
+using weft::test::ScratchDir;
 
 TEST(WEFT_TEST_SUITE, demo_scene_is_a_sewn_layered_skirt_on_a_moving_body) {
   const int res = 6;
@@ -120,7 +96,7 @@ TEST(WEFT_TEST_SUITE, demo_frames_stay_finite_with_a_pinned_hash) {
 }
 
 TEST(WEFT_TEST_SUITE, contact_sheet_is_a_png_of_the_grid) {
-  const DemoDir dir("sheet");
+  const ScratchDir dir("sheet");
   const Scene s = make_builtin_scene("demo", {4});
   CacheHeader header{s.name, "serial", s.points.size(), s.triangles, s.settings};
   const std::string cache = dir.file("tiny.h5");
@@ -155,29 +131,7 @@ TEST(WEFT_TEST_SUITE, contact_sheet_is_a_png_of_the_grid) {
   EXPECT_THROW(cache_sheet(reader, nullptr, 1, 9, 3), std::runtime_error);
   const Scene other = make_builtin_scene("demo", {6});
   EXPECT_THROW(cache_sheet(reader, &other, 1, 5, 3), std::runtime_error);
-  std::set<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir.path)) names.insert(e.path().filename().string());
-  EXPECT_EQ(names, (std::set<std::string>{"sheet.png", "tiny.h5"}));
-}
-
-// `weft demo` and `weft render` (the binary, serial backend), when it is built.
-TEST(WEFT_TEST_SUITE, cli_demo_writes_a_cache_and_a_contact_sheet) {
-  const std::string bin = std::string(WEFT_BIN_DIR) + "/weft";
-  if (!fs::exists(bin)) GTEST_SKIP() << bin << " is not built";
-  const DemoDir dir("cli");
-  const auto weft = [&](const std::string& args) {
-    const int st = std::system((bin + " --backend serial " + args + " > '" + dir.file("log") + "' 2>&1").c_str());
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  };
-  const std::string out = dir.file("out");
-  ASSERT_EQ(weft("demo --size 700 --frames 1-3 --out " + out), 0);
-  const CacheReader cache(out + "/demo.h5");
-  EXPECT_EQ(cache.frames(), (std::vector<int>{1, 2, 3}));
-  EXPECT_EQ(png_size(out + "/contact-sheet.png"), (std::pair<int, int>{3 * 360, 36 + 360}));
-  ASSERT_EQ(weft("render " + out + "/demo.h5 -o " + dir.file("any.png") + " --count 2 --cell 128"), 0);
-  EXPECT_EQ(png_size(dir.file("any.png")), (std::pair<int, int>{2 * 128, 36 + 128}));
-  EXPECT_EQ(weft("render " + out + "/demo.h5 -o " + dir.file("bad.png") + " --frames 1-9"), 2);
-  EXPECT_FALSE(fs::exists(dir.file("bad.png")));
+  EXPECT_EQ(dir.entries(), (std::set<std::string>{"sheet.png", "tiny.h5"}));
 }
 
 }  // namespace

@@ -1,33 +1,18 @@
-// Batches (farm/): descriptions expanded into tasks, settings by name (weft run --set), the Slurm job script,
-// and `weft batch` on this machine end to end. The run on a real Slurm is tests/farm_slurm.sh.
+// Batches (farm/): descriptions expanded into tasks, settings by name (weft run --set), the Slurm job script.
+// `weft batch` on this machine end to end is cli_batch; the run on a real Slurm is tests/farm_slurm.sh.
 #include "core/error.hpp"
 #include "farm/batch.hpp"
 #include "farm/scheduler.hpp"
 #include "io/builtin_scenes.hpp"
-#include "io/cache_file.hpp"
 #include "io/scene_overrides.hpp"
 #include "tests/scratch_dir_fixture.hpp"
 
-#include <sys/wait.h>
-
-#include <cstdlib>
 #include <string>
 
 namespace {
 
-namespace fs = std::filesystem;
 using namespace weft;
 using weft::test::ScratchDir;
-
-std::string weft_binary() { return std::string(WEFT_BIN_DIR) + "/weft"; }
-
-// Runs `weft <args>` (serial backend), returns its exit status. `env`: variables set for it.
-int weft_cli(const ScratchDir& dir, const std::string& args, std::string& output, const std::string& env = "") {
-  const std::string log = dir.file("weft.log");
-  const int status = std::system((env + " " + weft_binary() + " --backend serial " + args + " > '" + log + "' 2>&1").c_str());
-  output = dir.read("weft.log");
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 std::string error_of(const std::string& path) {
   try {
@@ -147,80 +132,6 @@ TEST(WEFT_TEST_SUITE, slurm_script_runs_each_task_as_one_array_element_that_resu
   EXPECT_EQ(farm::shell_quote("it's"), "'it'\\''s'");
   EXPECT_EQ(farm::shell_quote("a b"), "'a b'");
   EXPECT_EQ(farm::shell_quote("--set=x,y"), "--set=x,y");
-}
-
-TEST(WEFT_TEST_SUITE, cli_run_set_is_kept_in_the_cache_and_a_resume_with_other_values_is_refused) {
-  const ScratchDir dir("cli_set");
-  std::string out;
-  const std::string run = "run builtin:hanging-sheet --res 4 ";
-  ASSERT_EQ(weft_cli(dir, run + "--frames 1-3 --set substeps=3 --set bend_stiffness_scale=2 -o " + dir.file("a.h5"), out), 0) << out;
-  EXPECT_EQ(io::CacheReader(dir.file("a.h5")).header().overrides, "substeps=3;bend_stiffness_scale=2");
-  EXPECT_EQ(weft_cli(dir, run + "--frames 1-5 --set substeps=4 -o " + dir.file("a.h5") + " --resume", out), 2);
-  EXPECT_NE(out.find("computed with --set 'substeps=3;bend_stiffness_scale=2', this run with 'substeps=4'"),
-            std::string::npos) << out;
-  EXPECT_EQ(weft_cli(dir, run + "--frames 1-5 --set substeps=3 --set bend_stiffness_scale=2 --hash -o " +
-                              dir.file("a.h5") + " --resume", out), 0) << out;
-  std::string straight;
-  ASSERT_EQ(weft_cli(dir, run + "--frames 1-5 --substeps 3 --set bend_stiffness_scale=2 --hash", straight), 0);
-  EXPECT_EQ(out.substr(out.rfind("hash ")), straight.substr(straight.rfind("hash ")));
-  EXPECT_EQ(weft_cli(dir, run + "--set substep=3", out), 1);
-  EXPECT_NE(out.find("unknown setting 'substep'"), std::string::npos) << out;
-  EXPECT_EQ(weft_cli(dir, run + "--set help", out), 0);
-  EXPECT_NE(out.find("stretch_stiffness_scale"), std::string::npos) << out;
-}
-
-TEST(WEFT_TEST_SUITE, cli_batch_on_this_machine_runs_every_task_and_collects_a_summary) {
-  const ScratchDir dir("cli_batch_local");
-  dir.write("w.json", R"({"name": "w", "tasks": [
-    {"name": "a", "scene": "builtin:hanging-sheet", "res": 4, "frames": "1-4"},
-    {"name": "k", "scene": "builtin:hanging-sheet", "res": 4, "frames": "1-4", "wedge": {"bend_stiffness_scale": [0.5, 2]}}
-  ]})");
-  std::string out;
-  ASSERT_EQ(weft_cli(dir, "batch plan " + dir.file("w.json"), out), 0) << out;
-  EXPECT_NE(out.find("batch w: 3 tasks, output " + dir.file("w")), std::string::npos) << out;
-  EXPECT_NE(out.find("k-1   builtin:hanging-sheet --res 4  1-4     bend_stiffness_scale=2"), std::string::npos) << out;
-  EXPECT_FALSE(fs::exists(dir.file("w"))) << "plan writes nothing";
-  ASSERT_EQ(weft_cli(dir, "batch submit " + dir.file("w.json") + " --scheduler local", out), 0) << out;
-  for (const char* t : {"a", "k-0", "k-1"}) {
-    const io::CacheReader c(dir.file(std::string("w/") + t + "/cache.h5"));
-    EXPECT_EQ(c.frame_count(), 4) << t;
-    EXPECT_EQ(dir.read(std::string("w/") + t + "/exit_code"), "0\n") << t;
-  }
-  ASSERT_EQ(weft_cli(dir, "batch status " + dir.file("w.json"), out), 0) << out;
-  EXPECT_NE(out.find("3 of 3 tasks done"), std::string::npos) << out;
-  ASSERT_EQ(weft_cli(dir, "batch collect " + dir.file("w.json"), out), 0) << out;
-  std::string straight;
-  ASSERT_EQ(weft_cli(dir, "run builtin:hanging-sheet --res 4 --frames 1-4 --set bend_stiffness_scale=2 --hash", straight), 0);
-  const std::string h = straight.substr(straight.rfind("hash ") + 5, 16);
-  const std::string md = dir.read("w/summary.md");
-  EXPECT_NE(md.find("| k-1 | 2 | done | 4/4 |"), std::string::npos) << md;
-  EXPECT_NE(md.find(h), std::string::npos) << "the summary gives the straight run's hash " << h << "\n" << md;
-  EXPECT_NE(md.find("![k-1](k-1/sheet.png)"), std::string::npos) << md;
-  EXPECT_TRUE(fs::exists(dir.file("w/k-1/sheet.png")));
-  EXPECT_NE(dir.read("w/summary.html").find("<h2>wedge k</h2>"), std::string::npos);
-}
-
-TEST(WEFT_TEST_SUITE, cli_batch_submits_nothing_over_a_cache_of_another_scene_or_without_a_scheduler) {
-  const ScratchDir dir("cli_batch_refusals");
-  dir.write("w.json", R"({"name": "w", "tasks": [
-    {"name": "a", "scene": "builtin:hanging-sheet", "res": 4, "frames": "1-3"},
-    {"name": "b", "scene": "builtin:hanging-sheet", "res": 4, "frames": "1-3", "set": {"substeps": 2}}]})");
-  std::string out;
-  fs::create_directories(dir.file("w/b"));
-  ASSERT_EQ(weft_cli(dir, "run builtin:hanging-sheet --res 5 --frames 1-2 -o " + dir.file("w/b/cache.h5"), out), 0) << out;
-  EXPECT_EQ(weft_cli(dir, "batch submit " + dir.file("w.json") + " --scheduler local", out), 2);
-  EXPECT_NE(out.find("nothing submitted"), std::string::npos) << out;
-  EXPECT_NE(out.find("task b: " + dir.file("w/b/cache.h5") + " belongs to another run (scene builtin:hanging-sheet)"),
-            std::string::npos) << out;
-  EXPECT_FALSE(fs::exists(dir.file("w/a"))) << "no task ran";
-  EXPECT_FALSE(fs::exists(dir.file("w/submission.json")));
-  fs::remove_all(dir.file("w"));
-  // No Slurm commands on PATH. (A controller that does not answer is refused the same way, after sinfo has
-  // waited for it: tests/farm_slurm.sh.)
-  EXPECT_EQ(weft_cli(dir, "batch submit " + dir.file("w.json") + " --scheduler slurm", out, "PATH=/nonexistent"), 3);
-  EXPECT_NE(out.find("slurm: sbatch is not on PATH"), std::string::npos) << out;
-  EXPECT_NE(out.find("nothing submitted"), std::string::npos) << out;
-  EXPECT_FALSE(fs::exists(dir.file("w/submission.json")));
 }
 
 }  // namespace

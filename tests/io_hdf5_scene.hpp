@@ -5,8 +5,7 @@
 #include "io/hdf5_util.hpp"
 #include "io/procedural.hpp"
 #include "io/scene_file.hpp"
-
-#include <unistd.h>
+#include "tests/scratch_dir_fixture.hpp"
 
 #include <cstring>
 #include <filesystem>
@@ -18,18 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace weft;
 using namespace weft::io;
-
-struct SceneDir {
-  fs::path path;
-  explicit SceneDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("weft_io_hdf5_scene_" + std::to_string(::getpid()) + "_" + name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~SceneDir() { fs::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-  size_t entries() const { return size_t(std::distance(fs::directory_iterator(path), fs::directory_iterator())); }
-};
+using weft::test::ScratchDir;
 
 // The skirt (kinematic pins following animated targets, an animated collider) plus a piece of every other
 // constraint kind, a second collider and non-default settings.
@@ -206,7 +194,7 @@ struct Edit {
 };
 
 TEST(WEFT_TEST_SUITE, hdf5_scene_round_trip_is_exact) {
-  const SceneDir dir("round_trip");
+  const ScratchDir dir("round_trip");
   const Scene s = every_kind_scene();
   const Constraints& c = s.constraints;
   ASSERT_TRUE(!c.distance.empty() && !c.bend.empty() && !c.triarap.empty() && !c.pin.empty() && !c.attach.empty() &&
@@ -215,11 +203,11 @@ TEST(WEFT_TEST_SUITE, hdf5_scene_round_trip_is_exact) {
   const std::string path = dir.file("scene.h5");
   write_scene(s, path);
   expect_identical(s, read_scene(path));
-  EXPECT_EQ(dir.entries(), 1u);  // no temporary file left behind
+  EXPECT_EQ(dir.entries().size(), 1u);  // no temporary file left behind
 }
 
 TEST(WEFT_TEST_SUITE, hdf5_scene_round_trip_of_an_empty_animation_and_no_colliders) {
-  const SceneDir dir("plain");
+  const ScratchDir dir("plain");
   const Scene s = make_builtin_scene("hanging-sheet", {3});
   ASSERT_TRUE(s.pin_targets.empty() && s.colliders.empty());
   write_scene(s, dir.file("sheet.h5"));
@@ -227,7 +215,7 @@ TEST(WEFT_TEST_SUITE, hdf5_scene_round_trip_of_an_empty_animation_and_no_collide
 }
 
 TEST(WEFT_TEST_SUITE, hdf5_scene_errors_name_the_file_and_the_dataset) {
-  const SceneDir dir("errors");
+  const ScratchDir dir("errors");
   const Scene s = every_kind_scene();
 
   const std::string text = dir.file("text.h5");
@@ -292,17 +280,17 @@ TEST(WEFT_TEST_SUITE, hdf5_scene_errors_name_the_file_and_the_dataset) {
 }
 
 TEST(WEFT_TEST_SUITE, hdf5_scene_write_failures_leave_nothing) {
-  const SceneDir dir("write_failures");
+  const ScratchDir dir("write_failures");
   Scene s = make_builtin_scene("hanging-sheet", {3});
   std::ofstream(dir.file("plain-file")) << "x";
   EXPECT_THROW(write_scene(s, dir.file("plain-file") + "/scene.h5"), std::runtime_error);
   s.points.mass[2] = -1;
   EXPECT_THROW(write_scene(s, dir.file("invalid.h5")), InputError);
-  EXPECT_EQ(dir.entries(), 1u);
+  EXPECT_EQ(dir.entries().size(), 1u);
 }
 
 TEST(WEFT_TEST_SUITE, hdf5_scene_reader_rejects_other_weft_files) {
-  const SceneDir dir("kind");
+  const ScratchDir dir("kind");
   const std::string path = dir.file("other.h5");
   h5::write_atomically(path, [](const h5::File& f) {
     h5::write_attribute(f, "/", "weft_format", "weft-cache");

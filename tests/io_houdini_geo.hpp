@@ -2,14 +2,14 @@
 #include "io/houdini_bjson.hpp"
 #include "io/houdini_geo.hpp"
 #include "tests/io_checks_fixture.hpp"
-
-#include <unistd.h>
+#include "tests/scratch_dir_fixture.hpp"
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,27 +18,10 @@ namespace {
 
 using weft::test::contains;
 using weft::test::expect_same_attributes;
+using weft::test::ScratchDir;
 
 namespace fs = std::filesystem;
 using namespace weft::io;
-
-// A fresh folder per test, removed afterwards.
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("weft_io_geo_" + std::to_string(::getpid()) + "_" + name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-  std::vector<std::string> listing() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(path)) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-};
 
 std::string houdini_file(const std::string& name) { return weft::test::shared_dir() + "/data/houdini/" + name; }
 
@@ -46,8 +29,6 @@ std::string read_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
-
-void write_bytes(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
 
 // The FormatError message `f` throws; a test failure when it throws none.
 std::string format_error(const std::function<void()>& f) {
@@ -243,11 +224,11 @@ TEST(WEFT_TEST_SUITE, houdini_binary_json_decodes_either_byte_order) {
 }
 
 TEST(WEFT_TEST_SUITE, houdini_vellum_like_geometry_round_trips_exactly) {
-  const TempDir dir("roundtrip");
+  const ScratchDir dir("roundtrip");
   const Geometry g = vellum_like();
   write_geo(g, dir.file("asset.geo"));
   write_bgeo(g, dir.file("asset.bgeo"));
-  EXPECT_EQ(dir.listing(), (std::vector<std::string>{"asset.bgeo", "asset.geo"}));  // no temporary left
+  EXPECT_EQ(dir.entries(), (std::set<std::string>{"asset.bgeo", "asset.geo"}));  // no temporary left
   EXPECT_EQ(read_bytes(dir.file("asset.geo")).substr(0, 1), "[");
   EXPECT_EQ(read_bytes(dir.file("asset.bgeo")).substr(0, 5), "\x7fNSJb");
 
@@ -266,7 +247,7 @@ TEST(WEFT_TEST_SUITE, houdini_vellum_like_geometry_round_trips_exactly) {
 }
 
 TEST(WEFT_TEST_SUITE, houdini_cloth_frame_from_a_trimesh_round_trips) {
-  const TempDir dir("frame");
+  const ScratchDir dir("frame");
   weft::io::TriMesh mesh;
   mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0.5}};
   mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
@@ -285,7 +266,7 @@ TEST(WEFT_TEST_SUITE, houdini_cloth_frame_from_a_trimesh_round_trips) {
 }
 
 TEST(WEFT_TEST_SUITE, houdini_older_primitive_forms_and_paged_attributes_read) {
-  const TempDir dir("forms");
+  const ScratchDir dir("forms");
   // A run of open polys, a single closed Poly whose vertex list runs backwards, a Sphere; P stored in pages
   // of 2 with packing [1, 2] and constant pages; a per-vertex attribute that must follow the vertex order.
   const std::string doc = R"(["pointcount",3,"vertexcount",8,"primitivecount",4,
@@ -300,7 +281,7 @@ TEST(WEFT_TEST_SUITE, houdini_older_primitive_forms_and_paged_attributes_read) {
  [["type","run","runtype","Poly","varyingfields",["vertex"],"uniformfields",{"closed":false}],[[[0,1]],[[2,3]]]],
  [["type","Poly"],["vertex",[6,5,4],"closed",true]],
  [["type","Sphere"],["vertex",7,"transform",[2,0,0,0,2,0,0,0,2]]]]])";
-  write_bytes(dir.file("forms.geo"), doc);
+  dir.write("forms.geo", doc);
   const Geometry g = read_geo(dir.file("forms.geo"));
   ASSERT_EQ(g.points.size(), 3u);
   EXPECT_TRUE(g.points[0] == (weft::Vec3{1, 5, 6}));
@@ -320,13 +301,13 @@ TEST(WEFT_TEST_SUITE, houdini_older_primitive_forms_and_paged_attributes_read) {
 }
 
 TEST(WEFT_TEST_SUITE, houdini_unknown_primitives_and_attributes_are_reported) {
-  const TempDir dir("unknown");
+  const ScratchDir dir("unknown");
   std::string doc =
       replaced(kTriangle, R"([[["type","Polygon_run"],["startvertex",0,"nprimitives",1,"nvertices_rle",[3,1]]]])",
                R"([[["type","Part"],["vertex",[0,1,2],"renderproperties",{}]]])");
   doc = replaced(doc, R"("pointattributes",[)",
                  R"("pointattributes",[[["scope","public","type","dict","name","meta","options",{}],["size",1]],)");
-  write_bytes(dir.file("part.geo"), doc);
+  dir.write("part.geo", doc);
   const Geometry g = read_geo(dir.file("part.geo"));
   ASSERT_EQ(g.primitives.size(), 1u);
   EXPECT_EQ(g.primitives[0].kind, PrimKind::Other);
@@ -344,18 +325,18 @@ TEST(WEFT_TEST_SUITE, houdini_unknown_primitives_and_attributes_are_reported) {
   EXPECT_FALSE(fs::exists(out));
 
   // A type whose vertices cannot be read stops the read, naming the primitive.
-  write_bytes(dir.file("packed.geo"),
-              replaced(kTriangle, R"([["type","Polygon_run"],["startvertex",0,"nprimitives",1,"nvertices_rle",[3,1]]])",
-                       R"([["type","PackedGeometry"],["parameters",[]]])"));
+  dir.write("packed.geo",
+            replaced(kTriangle, R"([["type","Polygon_run"],["startvertex",0,"nprimitives",1,"nvertices_rle",[3,1]]])",
+                     R"([["type","PackedGeometry"],["parameters",[]]])"));
   const std::string packed = format_error([&] { read_geo(dir.file("packed.geo")); });
   EXPECT_TRUE(contains(packed, "packed.geo: primitive 0") && contains(packed, "'PackedGeometry'")) << packed;
 }
 
 TEST(WEFT_TEST_SUITE, houdini_malformed_files_name_the_file_and_the_element) {
   if (weft::test::shared_dir().empty()) GTEST_SKIP() << "../shared absent";
-  const TempDir dir("malformed");
+  const ScratchDir dir("malformed");
   const auto error_for = [&](const std::string& name, const std::string& bytes) {
-    write_bytes(dir.file(name), bytes);
+    dir.write(name, bytes);
     return format_error([&] { read_geo(dir.file(name)); });
   };
   const std::string text = read_bytes(houdini_file("default.geo"));
@@ -389,7 +370,7 @@ TEST(WEFT_TEST_SUITE, houdini_malformed_files_name_the_file_and_the_element) {
 }
 
 TEST(WEFT_TEST_SUITE, houdini_writer_is_all_or_nothing) {
-  const TempDir dir("atomic");
+  const ScratchDir dir("atomic");
   const Geometry g = vellum_like();
 
   const std::string missing = dir.file("no_such_folder/frame.0001.geo");
@@ -399,7 +380,7 @@ TEST(WEFT_TEST_SUITE, houdini_writer_is_all_or_nothing) {
   // The rename fails (the target is a folder): the temporary is removed.
   fs::create_directory(dir.path / "taken.bgeo");
   EXPECT_THROW(write_bgeo(g, dir.file("taken.bgeo")), std::system_error);
-  EXPECT_EQ(dir.listing(), std::vector<std::string>{"taken.bgeo"});
+  EXPECT_EQ(dir.entries(), std::set<std::string>{"taken.bgeo"});
 
   // Geometry the file could not describe is refused before anything is written.
   Geometry wrong = g;
@@ -414,10 +395,10 @@ TEST(WEFT_TEST_SUITE, houdini_writer_is_all_or_nothing) {
   narrow.point_attributes["layer"].ints[0] = 300;
   const std::string msg3 = format_error([&] { write_geo(narrow, dir.file("narrow.geo")); });
   EXPECT_TRUE(contains(msg3, "point attribute 'layer': element 0 holds 300")) << msg3;
-  EXPECT_EQ(dir.listing(), std::vector<std::string>{"taken.bgeo"});
+  EXPECT_EQ(dir.entries(), std::set<std::string>{"taken.bgeo"});
 
   write_geo(g, dir.file("ok.geo"));
-  EXPECT_EQ(dir.listing(), (std::vector<std::string>{"ok.geo", "taken.bgeo"}));
+  EXPECT_EQ(dir.entries(), (std::set<std::string>{"ok.geo", "taken.bgeo"}));
 }
 
 }  // namespace

@@ -8,8 +8,7 @@
 #include "io/scene_file.hpp"
 #include "io/scene_source.hpp"
 #include "tests/io_checks_fixture.hpp"
-
-#include <unistd.h>
+#include "tests/scratch_dir_fixture.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -21,30 +20,16 @@ namespace {
 
 using weft::test::contains;
 using weft::test::input_error;
+using weft::test::ScratchDir;
 
 namespace fs = std::filesystem;
 using namespace weft;
 using namespace weft::io;
 
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("weft_io_json_" + std::to_string(::getpid()) + "_" + name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(file(name), std::ios::trunc) << text;
-    return file(name);
-  }
-};
-
 const char* kFlagObj = "v 0 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nf 1 2 3 4\n";
 
 // body.0001.obj .. body.0003.obj: a quad rising 0.1 m per frame.
-void write_body(const TempDir& dir) {
+void write_body(const ScratchDir& dir) {
   for (int f = 1; f <= 3; ++f) {
     TriMesh m;
     const double y = 0.1 * (f - 1);
@@ -100,7 +85,7 @@ Scene expected_scene() {
 }
 
 TEST(WEFT_TEST_SUITE, io_json_scene_gives_the_expected_scene) {
-  TempDir dir("scene");
+  ScratchDir dir("scene");
   dir.write("flag.obj", kFlagObj);
   write_body(dir);
   const std::string path = dir.write("scene.json", kScene);
@@ -185,7 +170,7 @@ TEST(WEFT_TEST_SUITE, io_json_scene_gives_the_expected_scene) {
 }
 
 TEST(WEFT_TEST_SUITE, io_json_builtin_base) {
-  TempDir dir("builtin");
+  ScratchDir dir("builtin");
   const std::string path = dir.write("scene.json", R"({"builtin": "hanging-sheet", "res": 4,
       "settings": {"frames": [1, 5], "collisions": false},
       "cloth": [{"generator": "grid", "res": [1, 1]}]})");
@@ -198,7 +183,7 @@ TEST(WEFT_TEST_SUITE, io_json_builtin_base) {
 }
 
 TEST(WEFT_TEST_SUITE, io_json_load_scene_dispatch) {
-  TempDir dir("dispatch");
+  ScratchDir dir("dispatch");
   dir.write("flag.obj", kFlagObj);
   write_body(dir);
   const std::string path = dir.write("scene.json", kScene);
@@ -217,7 +202,7 @@ TEST(WEFT_TEST_SUITE, io_json_load_scene_dispatch) {
 
 // Each error class: the message starts with the file and names the JSON path.
 TEST(WEFT_TEST_SUITE, io_json_errors_name_file_and_path) {
-  TempDir dir("errors");
+  ScratchDir dir("errors");
   dir.write("flag.obj", kFlagObj);
   dir.write("bad.obj", "v 0 0 0\nv 1 0 0\nv x 1 0\nf 1 2 3\n");
   dir.write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n");

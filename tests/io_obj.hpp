@@ -1,7 +1,6 @@
 // OBJ meshes and frame patterns.
 #include "io/obj.hpp"
-
-#include <unistd.h>
+#include "tests/scratch_dir_fixture.hpp"
 
 #include <array>
 #include <filesystem>
@@ -14,21 +13,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace weft::io;
-
-struct ObjDir {
-  fs::path path;
-  explicit ObjDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("weft_io_obj_" + std::to_string(::getpid()) + "_" + name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~ObjDir() { fs::remove_all(path); }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string file = (path / name).string();
-    std::ofstream(file, std::ios::binary) << text;
-    return file;
-  }
-};
+using weft::test::ScratchDir;
 
 std::string obj_error(const std::string& path) {
   try {
@@ -41,7 +26,7 @@ std::string obj_error(const std::string& path) {
 }
 
 TEST(WEFT_TEST_SUITE, obj_reads_quads_negative_indices_and_all_face_forms) {
-  const ObjDir dir("read");
+  const ScratchDir dir("read");
   const std::string file = dir.write("mesh.obj",
                                      "# a quad and a triangle\r\n"
                                      "mtllib cloth.mtl\n"
@@ -61,7 +46,7 @@ TEST(WEFT_TEST_SUITE, obj_reads_quads_negative_indices_and_all_face_forms) {
 }
 
 TEST(WEFT_TEST_SUITE, obj_errors_name_the_file_and_line) {
-  const ObjDir dir("errors");
+  const ScratchDir dir("errors");
   const std::string range = dir.write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n\nf 1 2 4\n");
   EXPECT_NE(obj_error(range).find(range + ": line 6: face vertex 4 is out of range"), std::string::npos)
       << obj_error(range);
@@ -75,27 +60,27 @@ TEST(WEFT_TEST_SUITE, obj_errors_name_the_file_and_line) {
       << obj_error(zero);
   const std::string small = dir.write("small.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n");
   EXPECT_NE(obj_error(small).find("small.obj: line 3: a face needs at least three vertices"), std::string::npos);
-  EXPECT_THROW(read_obj((dir.path / "absent.obj").string()), std::system_error);
+  EXPECT_THROW(read_obj(dir.file("absent.obj")), std::system_error);
 }
 
 TEST(WEFT_TEST_SUITE, obj_write_round_trips_exactly_and_atomically) {
-  const ObjDir dir("write");
+  const ScratchDir dir("write");
   weft::test::TestRng rng(7);
   TriMesh m;
   for (int i = 0; i < 50; ++i)
     m.positions.push_back({rng.uniform(-3, 3), rng.uniform(-1e-9, 1e-9), rng.uniform(0, 1e6)});
   for (int i = 0; i + 2 < 50; ++i) m.triangles.push_back({i, i + 1, i + 2});
-  const std::string file = (dir.path / "body.0001.obj").string();
+  const std::string file = dir.file("body.0001.obj");
   write_obj(m, file);
   const TriMesh back = read_obj(file);
   EXPECT_EQ(back.triangles, m.triangles);
   ASSERT_EQ(back.positions.size(), m.positions.size());
   for (size_t i = 0; i < m.positions.size(); ++i) EXPECT_TRUE(back.positions[i] == m.positions[i]) << i;
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 1);  // no temporary left
+  EXPECT_EQ(dir.entries().size(), 1u);  // no temporary left
 
   TriMesh bad = m;
   bad.triangles.push_back({0, 1, 50});
-  const std::string bad_file = (dir.path / "bad.obj").string();
+  const std::string bad_file = dir.file("bad.obj");
   try {
     write_obj(bad, bad_file);
     ADD_FAILURE() << "no FormatError";
@@ -104,7 +89,7 @@ TEST(WEFT_TEST_SUITE, obj_write_round_trips_exactly_and_atomically) {
         << e.what();
   }
   EXPECT_FALSE(fs::exists(bad_file));
-  EXPECT_THROW(write_obj(m, (dir.path / "missing" / "x.obj").string()), std::system_error);
+  EXPECT_THROW(write_obj(m, dir.file("missing/x.obj")), std::system_error);
 }
 
 TEST(WEFT_TEST_SUITE, obj_frame_patterns_expand_like_houdini) {

@@ -1,13 +1,11 @@
 // The PLY reader: ASCII and binary little-endian files it writes here read back exactly, whatever their
 // numeric types and extra elements; malformed files fail naming the file and element; the cloth-funnel frames.
 #include "io/ply.hpp"
-
-#include <unistd.h>
+#include "tests/scratch_dir_fixture.hpp"
 
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <string>
 #include <system_error>
@@ -16,22 +14,10 @@
 
 namespace {
 
-namespace fs = std::filesystem;
 using weft::Vec3;
 using weft::io::FormatError;
 using weft::io::read_ply;
-
-// A scratch folder removed with the test.
-struct TempDir {
-  fs::path path;
-  TempDir() : path(fs::temp_directory_path() / ("weft_io_ply_" + std::to_string(::getpid()))) { fs::create_directories(path); }
-  ~TempDir() { fs::remove_all(path); }
-  std::string write(const std::string& name, const std::string& bytes) const {
-    const std::string p = (path / name).string();
-    std::ofstream(p, std::ios::binary) << bytes;
-    return p;
-  }
-};
+using weft::test::ScratchDir;
 
 // Little-endian bytes of a value.
 template <class T>
@@ -59,7 +45,7 @@ const std::vector<Vec3> kPositions = {{0, 0, 0}, {1.5, -2.25, 3}, {0.1, 0.2, 0.3
 const std::vector<std::array<int, 3>> kTriangles = {{0, 1, 2}, {3, 2, 1}};
 
 TEST(WEFT_TEST_SUITE, ply_ascii_reads_exactly) {
-  TempDir dir;
+  const ScratchDir dir("ply_ascii");
   const std::string text =
       "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nobj_info nothing\r\nelement vertex 4\r\n"
       "property double x\r\nproperty double y\r\nproperty double z\r\nproperty uchar red\r\n"
@@ -75,7 +61,7 @@ TEST(WEFT_TEST_SUITE, ply_ascii_reads_exactly) {
 }
 
 TEST(WEFT_TEST_SUITE, ply_ascii_float_properties_hold_float_values) {
-  TempDir dir;
+  const ScratchDir dir("ply_ascii_float");
   const weft::io::TriMesh m = read_ply(dir.write(
       "f.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
                "end_header\n0.1 -0.2 3\n"));
@@ -86,7 +72,7 @@ TEST(WEFT_TEST_SUITE, ply_ascii_float_properties_hold_float_values) {
 }
 
 TEST(WEFT_TEST_SUITE, ply_binary_reads_exactly_in_every_type) {
-  TempDir dir;
+  const ScratchDir dir("ply_binary");
   // Doubles and int indices, with other properties interleaved.
   std::string d =
       "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty short id\nproperty double x\n"
@@ -116,7 +102,7 @@ TEST(WEFT_TEST_SUITE, ply_binary_reads_exactly_in_every_type) {
 }
 
 TEST(WEFT_TEST_SUITE, ply_malformed_files_fail_naming_file_and_element) {
-  TempDir dir;
+  const ScratchDir dir("ply_malformed");
   const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
   const std::string verts = "0 0 0\n1 0 0\n0 1 0\n";
@@ -157,7 +143,7 @@ TEST(WEFT_TEST_SUITE, ply_malformed_files_fail_naming_file_and_element) {
     EXPECT_NE(message.find(path + ": "), std::string::npos) << b.name << ": " << message;
     EXPECT_NE(message.find(b.expect), std::string::npos) << b.name << ": " << message;
   }
-  EXPECT_THROW(read_ply((dir.path / "missing.ply").string()), std::system_error);
+  EXPECT_THROW(read_ply(dir.file("missing.ply")), std::system_error);
 }
 
 TEST(WEFT_TEST_SUITE, ply_reads_cloth_funnel_frames) {

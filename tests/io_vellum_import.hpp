@@ -5,10 +5,9 @@
 #include "io/obj.hpp"
 #include "io/scene_file.hpp"
 #include "io/vellum_import.hpp"
+#include "tests/houdini_geometry_fixture.hpp"
 #include "tests/io_checks_fixture.hpp"
-
-#include <sys/wait.h>
-#include <unistd.h>
+#include "tests/scratch_dir_fixture.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -23,99 +22,13 @@ namespace {
 
 using weft::test::contains;
 using weft::test::input_error;
+using weft::test::cloth_sim;
+using weft::test::ConstraintGeo;
+using weft::test::ScratchDir;
 
 namespace fs = std::filesystem;
 using namespace weft;
 using namespace weft::io;
-
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("weft_io_vellum_" + std::to_string(::getpid()) + "_" + name)) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-};
-
-// Sim geometry: 3 x 3 points 0.5 m apart in the plane y = 1 (point j*3+i at (0.5 i, 1, 0.5 j)), four quads.
-Geometry cloth_sim() {
-  Geometry g;
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) g.points.push_back({0.5 * i, 1, 0.5 * j});
-  for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 2; ++i) {
-      Primitive p;
-      const int a = j * 3 + i;
-      p.points = {a, a + 1, a + 4, a + 3};
-      g.primitives.push_back(p);
-    }
-  g.point_attributes["mass"] = float_attribute(1, {0, 0.25, 0.25, 0.25, 0.5, 0.25, 0.25, 0.25, 0.25});
-  g.point_attributes["pscale"] = float_attribute(1, {0.01, 0.01, 0.01, 0.01, 0.02, 0.01, 0.01, 0.01, 0.01});
-  g.point_attributes["stopped"] = int_attribute(1, {0, 0, 1, 0, 0, 0, 0, 0, 3});
-  g.point_attributes["layer"] = int_attribute(1, {0, 0, 0, 0, 2, 0, 0, 0, 0});
-  g.point_attributes["friction"] = float_attribute(1, {1, 1, 1, 1, 0.5, 1, 1, 1, 1});
-  g.point_attributes["dynamicfriction"] = float_attribute(1, {1, 1, 1, 1, 0.25, 1, 1, 1, 1});
-  g.point_attributes["pintoanimation"] = int_attribute(1, {0, 0, 0, 0, 0, 0, 1, 0, 0});
-  std::vector<double> v(27, 0.0);
-  v[4 * 3 + 1] = -2;
-  g.point_attributes["v"] = float_attribute(3, v);
-  return g;
-}
-
-// One constraint primitive per add(); attributes filled with Vellum's defaults where not given.
-struct ConstraintGeo {
-  Geometry g;
-  std::vector<std::string> type, target_path;
-  std::vector<double> stiffness, compress, damping, restlength, restvector, target_uv;
-  std::vector<int64_t> target_prim, target_pt;
-
-  explicit ConstraintGeo(const Geometry& sim) { g.points = sim.points; }
-  ConstraintGeo& add(const std::string& t, std::vector<int> points, double k, double rest = 0,
-                     std::array<double, 4> rv = {0, 0, 0, 0}, double ck = -1, double d = 0,
-                     PrimKind kind = PrimKind::Polyline) {
-    Primitive p;
-    p.kind = kind;
-    p.points = std::move(points);
-    g.primitives.push_back(p);
-    type.push_back(t);
-    stiffness.push_back(k);
-    compress.push_back(ck);
-    damping.push_back(d);
-    restlength.push_back(rest);
-    restvector.insert(restvector.end(), rv.begin(), rv.end());
-    target_path.push_back("");
-    target_prim.push_back(-1);
-    target_pt.push_back(-1);
-    target_uv.insert(target_uv.end(), {0, 0, 0});
-    return *this;
-  }
-  ConstraintGeo& attach(int point, const std::string& path, int prim, double u, double v, int pt = -1) {
-    add("attach", {point}, 1e6, 0, {0, 0, 0, 0}, -1, 0, PrimKind::Sphere);
-    target_path.back() = path;
-    target_prim.back() = prim;
-    target_pt.back() = pt;
-    target_uv.resize(target_uv.size() - 3);
-    target_uv.insert(target_uv.end(), {u, v, 0});
-    return *this;
-  }
-  std::string write(const std::string& path) {
-    auto& a = g.primitive_attributes;
-    a["type"] = string_attribute(1, type);
-    a["stiffness"] = float_attribute(1, stiffness);
-    a["compressstiffness"] = float_attribute(1, compress);
-    a["dampingratio"] = float_attribute(1, damping);
-    a["restlength"] = float_attribute(1, restlength);
-    a["restvector"] = float_attribute(4, restvector);
-    a["target_path"] = string_attribute(1, target_path);
-    a["target_prim"] = int_attribute(1, target_prim);
-    a["target_pt"] = int_attribute(1, target_pt);
-    a["target_uv"] = float_attribute(3, target_uv);
-    write_geo(g, path);
-    return path;
-  }
-};
 
 // The asset of most tests: one constraint of every kind, one skipped (stiffness 0) and one unsupported.
 ConstraintGeo every_kind(const Geometry& sim) {
@@ -136,7 +49,7 @@ ConstraintGeo every_kind(const Geometry& sim) {
 }
 
 // A two-triangle quad collider at y = 0 moving up 0.1 per frame, frames 1..3, as OBJ files.
-std::string write_body(const TempDir& dir, int frames = 3) {
+std::string write_body(const ScratchDir& dir, int frames = 3) {
   for (int f = 1; f <= frames; ++f) {
     TriMesh m;
     const double y = 0.1 * (f - 1);
@@ -149,7 +62,7 @@ std::string write_body(const TempDir& dir, int frames = 3) {
   return dir.file("body.$F4.obj");
 }
 
-VellumImportOptions with_body(const TempDir& dir, bool skip = true) {
+VellumImportOptions with_body(const ScratchDir& dir, bool skip = true) {
   VellumImportOptions opt;
   opt.colliders.push_back({"", write_body(dir)});
   opt.frames = std::array<int, 2>{1, 3};
@@ -158,7 +71,7 @@ VellumImportOptions with_body(const TempDir& dir, bool skip = true) {
 }
 
 TEST(WEFT_TEST_SUITE, io_vellum_imports_every_constraint_kind) {
-  TempDir dir("kinds");
+  ScratchDir dir("kinds");
   const Geometry sim = cloth_sim();
   write_geo(sim, dir.file("cloth.geo"));
   every_kind(sim).write(dir.file("constraints.geo"));
@@ -266,7 +179,7 @@ TEST(WEFT_TEST_SUITE, io_vellum_imports_every_constraint_kind) {
 }
 
 TEST(WEFT_TEST_SUITE, io_vellum_point_attributes_and_triangles) {
-  TempDir dir("points");
+  ScratchDir dir("points");
   const Geometry sim = cloth_sim();
   write_geo(sim, dir.file("cloth.geo"));
   ConstraintGeo(sim).add("distance", {0, 1}, 1000, 0.5).write(dir.file("constraints.geo"));
@@ -293,7 +206,7 @@ TEST(WEFT_TEST_SUITE, io_vellum_point_attributes_and_triangles) {
 }
 
 TEST(WEFT_TEST_SUITE, io_vellum_refuses_unsupported_types_by_default) {
-  TempDir dir("unsupported");
+  ScratchDir dir("unsupported");
   const Geometry sim = cloth_sim();
   write_geo(sim, dir.file("cloth.geo"));
   every_kind(sim).add("stretchshear", {0, 1}, 10).add("stretchshear", {1, 2}, 10).write(dir.file("constraints.geo"));
@@ -308,7 +221,7 @@ TEST(WEFT_TEST_SUITE, io_vellum_refuses_unsupported_types_by_default) {
 }
 
 TEST(WEFT_TEST_SUITE, io_vellum_unsupported_point_features_are_reported) {
-  TempDir dir("weld");
+  ScratchDir dir("weld");
   Geometry sim = cloth_sim();
   sim.point_attributes["weld"] = int_attribute(1, {-1, -1, -1, -1, -1, -1, -1, 3, -1});
   write_geo(sim, dir.file("cloth.geo"));
@@ -318,7 +231,7 @@ TEST(WEFT_TEST_SUITE, io_vellum_unsupported_point_features_are_reported) {
 }
 
 TEST(WEFT_TEST_SUITE, io_vellum_matches_points_by_id) {
-  TempDir dir("ids");
+  ScratchDir dir("ids");
   Geometry sim = cloth_sim();
   sim.point_attributes["id"] = int_attribute(1, {10, 11, 12, 13, 14, 15, 16, 17, 18});
   write_geo(sim, dir.file("cloth.geo"));
@@ -343,7 +256,7 @@ TEST(WEFT_TEST_SUITE, io_vellum_matches_points_by_id) {
 }
 
 TEST(WEFT_TEST_SUITE, io_vellum_attach_to_geo_collider_and_fixed_goals) {
-  TempDir dir("attach");
+  ScratchDir dir("attach");
   const Geometry sim = cloth_sim();
   write_geo(sim, dir.file("cloth.geo"));
   // Collider: one Houdini triangle (points 0, 1, 2) and one quad.
@@ -395,7 +308,7 @@ TEST(WEFT_TEST_SUITE, io_vellum_attach_to_geo_collider_and_fixed_goals) {
 }
 
 TEST(WEFT_TEST_SUITE, io_vellum_settings_from_detail_attributes) {
-  TempDir dir("settings");
+  ScratchDir dir("settings");
   Geometry sim = cloth_sim();
   sim.detail_attributes["substeps"] = int_attribute(1, {5});
   sim.detail_attributes["constraintiterations"] = int_attribute(1, {50});
@@ -427,7 +340,7 @@ TEST(WEFT_TEST_SUITE, io_vellum_settings_from_detail_attributes) {
 
 TEST(WEFT_TEST_SUITE, io_vellum_houdini_files_as_simulation_geometry) {
   if (weft::test::shared_dir().empty()) GTEST_SKIP() << "no shared/ folder";
-  TempDir dir("houdini");
+  ScratchDir dir("houdini");
   struct Case {
     const char* file;
     size_t points, triangles;
@@ -454,9 +367,9 @@ TEST(WEFT_TEST_SUITE, io_vellum_houdini_files_as_simulation_geometry) {
 
 // ---- bad input ---------------------------------------------------------------------------------------------
 
-struct BadInput : TempDir {
+struct BadInput : ScratchDir {
   Geometry sim = cloth_sim();
-  BadInput(const std::string& name) : TempDir(name) {
+  BadInput(const std::string& name) : ScratchDir(name) {
     write_geo(sim, file("cloth.geo"));
     ConstraintGeo(sim).add("distance", {0, 1}, 1000, 0.5).write(file("constraints.geo"));
   }
@@ -464,11 +377,6 @@ struct BadInput : TempDir {
     return input_error([&] { import_vellum(file("cloth.geo"), file("constraints.geo"), opt); });
   }
 };
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
 
 TEST(WEFT_TEST_SUITE, io_vellum_bad_files) {
   BadInput b("files");
@@ -481,7 +389,7 @@ TEST(WEFT_TEST_SUITE, io_vellum_bad_files) {
 
   // A constraint vertex naming a point the file does not have.
   ConstraintGeo(b.sim).add("distance", {0, 8}, 1000, 0.5).write(b.file("constraints.geo"));
-  std::string text = read_text(b.file("constraints.geo"));
+  std::string text = b.read("constraints.geo");
   const size_t at = text.find("[0,8]");
   ASSERT_NE(at, std::string::npos) << text;
   text.replace(at, 5, "[0,9]");
@@ -509,7 +417,7 @@ TEST(WEFT_TEST_SUITE, io_vellum_bad_geometry) {
   Geometry sim = b.sim;
   sim.points[4].x = 0.625;
   write_bgeo(sim, b.file("cloth.geo"));
-  std::string bytes = read_text(b.file("cloth.geo"));
+  std::string bytes = b.read("cloth.geo");
   const float unique = 0.625f, nan = std::nanf("");
   const std::string from(reinterpret_cast<const char*>(&unique), 4), to(reinterpret_cast<const char*>(&nan), 4);
   const size_t at = bytes.find(from);
@@ -567,7 +475,7 @@ TEST(WEFT_TEST_SUITE, io_vellum_bad_constraints) {
 
 // --pin-target: pintoanimation points follow the animated cloth exactly, pin constraints are pulled to it.
 TEST(WEFT_TEST_SUITE, io_vellum_pins_follow_the_pin_target_animation) {
-  TempDir dir("pin_target");
+  ScratchDir dir("pin_target");
   const Geometry sim = cloth_sim();  // point 6 has pintoanimation
   write_geo(sim, dir.file("cloth.geo"));
   ConstraintGeo(sim).add("pin", {2}, 1e4).write(dir.file("constraints.geo"));
@@ -607,37 +515,6 @@ TEST(WEFT_TEST_SUITE, io_vellum_pins_follow_the_pin_target_animation) {
   const std::string e = input_error([&] { import_vellum(dir.file("cloth.geo"), dir.file("constraints.geo"), opt); });
   EXPECT_TRUE(contains(e, dir.file("fewer.geo") + ": the pin target has 8 points, the simulation geometry " +
                               dir.file("cloth.geo") + " 9")) << e;
-}
-
-// weft import-vellum --collider-thickness / --collider-friction [NAME=]VALUE: every collider, or one by name.
-TEST(WEFT_TEST_SUITE, io_vellum_cli_sets_each_colliders_thickness_and_friction) {
-  TempDir dir("collider_values");
-  const Geometry sim = cloth_sim();
-  write_geo(sim, dir.file("cloth.geo"));
-  Geometry body;
-  body.points = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}};
-  body.primitives.resize(1);
-  body.primitives[0].points = {0, 1, 2};
-  write_geo(body, dir.file("body.geo"));
-  write_geo(body, dir.file("rock.geo"));
-  ConstraintGeo(sim).write(dir.file("constraints.geo"));
-  const auto weft = [&](const std::string& args) {
-    const std::string cmd = std::string(WEFT_BIN_DIR) + "/weft import-vellum " + dir.file("cloth.geo") + " " +
-                            dir.file("constraints.geo") + " --collider " + dir.file("body.geo") + " --collider " +
-                            dir.file("rock.geo") + " -o " + dir.file("s.h5") + " " + args + " > " + dir.file("log") + " 2>&1";
-    const int st = std::system(cmd.c_str());
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  };
-  if (!fs::exists(std::string(WEFT_BIN_DIR) + "/weft")) GTEST_SKIP() << "weft is not built";
-  ASSERT_EQ(weft("--collider-thickness 0.004 --collider-thickness rock=0.02 --collider-friction body=0.1"), 0);
-  const Scene s = read_scene(dir.file("s.h5"));
-  ASSERT_EQ(s.colliders.size(), 2u);
-  EXPECT_EQ(s.colliders[0].thickness, 0.004);
-  EXPECT_EQ(s.colliders[1].thickness, 0.02);
-  EXPECT_EQ(s.colliders[0].friction, 0.1);
-  EXPECT_EQ(s.colliders[1].friction, Collider{}.friction);
-  EXPECT_EQ(weft("--collider-thickness skin=0.01"), 2);
-  EXPECT_EQ(weft("--collider-thickness -1"), 2);
 }
 
 TEST(WEFT_TEST_SUITE, io_vellum_collider_frames) {

@@ -36,14 +36,12 @@ PRESETS = {
     # 2-core CPU: small meshes, one second of animation, a reference 5x beyond the costliest schedule.
     "quick": {"res_scale": 0.25, "frames": 24, "reference": (40, 25, 2), "timeout": 90, "ref_timeout": 120,
               "families": {"substeps": [1, 2, 5, 10, 20], "iterations": [10, 20, 50, 100, 200],
-                           "tethers": [10, 20, 50, 100, 200], "small-steps": [5, 20],
-                           "paper": ["paper-1", "paper-2", "paper-3"]}},
+                           "tethers": [10, 20, 50, 100, 200], "small-steps": [5, 20]}},
     # GPU: the built-in resolutions, one second of animation, a reference 20x beyond the costliest schedule in
     # iterations per frame and 2x in substeps (about 5 minutes on one H200).
     "full": {"res_scale": 1.0, "frames": 24, "reference": (100, 40, 4), "timeout": 300, "ref_timeout": 600,
              "families": {"substeps": [1, 2, 5, 10, 20], "iterations": [10, 20, 50, 100, 200],
-                          "tethers": [10, 20, 50, 100, 200], "small-steps": [5, 10, 20, 50],
-                          "paper": ["paper-1", "paper-2", "paper-3"]}},
+                          "tethers": [10, 20, 50, 100, 200], "small-steps": [5, 10, 20, 50]}},
 }
 
 FAMILY_TITLES = {
@@ -53,15 +51,15 @@ FAMILY_TITLES = {
     "small-steps": "substeps x (1 it, 1 pass)",
     "paper": "paper-1/2/3",
 }
-PAPER = {"paper-1": (1, 200, 20), "paper-2": (10, 20, 2), "paper-3": (20, 10, 1)}  # substeps, it, passes
 
 
-def schedules(families, chosen):
+def schedules(families, chosen, named):
     """(family, label, substeps, iterations, passes, weft arguments) for every schedule of the grid. The
-    `tethers` family is `iterations` with `--tethers 1` (docs/solver.md, Tethers)."""
+    `tethers` family is `iterations` with `--tethers 1` (docs/solver.md, Tethers); the `paper` family is every
+    schedule in `named`, {name: (substeps, iterations, passes)} as `weft info` gives them (core/schedules.hpp)."""
     out = []
     for fam in chosen:
-        for v in families.get(fam, []):
+        for v in (named if fam == "paper" else families.get(fam, [])):
             if fam == "substeps":
                 s, it, cp = v, 10, 1
             elif fam in ("iterations", "tethers"):
@@ -69,7 +67,7 @@ def schedules(families, chosen):
             elif fam == "small-steps":
                 s, it, cp = v, 1, 1
             else:
-                s, it, cp = PAPER[v]
+                s, it, cp = named[v]
             if fam == "paper":
                 args, label = ["--schedule", v], v
             else:
@@ -155,7 +153,9 @@ def main():
         checkpoints = sorted(int(c) for c in a.checkpoints.split(","))
     else:
         checkpoints = sorted({first + max(1, round(nframes * q)) for q in (0.25, 0.5, 0.75, 1.0)})
-    grid = schedules(preset["families"], a.families.split(","))
+    if "paper" in a.families.split(",") and not info["schedules"]:
+        sys.exit(f"error: `{weft} info` names no schedules (a weft older than core/schedules.hpp?)")
+    grid = schedules(preset["families"], a.families.split(","), info["schedules"])
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     (out / "reference").mkdir(exist_ok=True)

@@ -72,15 +72,23 @@ def file_id(path):
     return h.hexdigest()[:12]
 
 
+# `weft info` names each schedule of core/schedules.hpp (apps/cmd_info.cpp).
+SCHEDULE_LINE = re.compile(r"^schedule (\S+): substeps (\d+), iterations (\d+), collision passes (\d+)$")
+
+
 def weft_info(weft):
-    """`weft info`: {'version', 'backends': [...], 'devices': [...lines]}."""
+    """`weft info`: {'version', 'backends': [...], 'schedules': {name: (substeps, iterations, passes)},
+    'lines': [...every line]}."""
     r = subprocess.run([weft, "info"], capture_output=True, text=True, check=True)
-    info = {"version": "", "backends": [], "lines": r.stdout.splitlines()}
+    info = {"version": "", "backends": [], "schedules": {}, "lines": r.stdout.splitlines()}
     for line in info["lines"]:
+        schedule = SCHEDULE_LINE.match(line)
         if line.startswith("weft "):
             info["version"] = line.split(None, 1)[1]
         elif line.startswith("backends:"):
             info["backends"] = line.split(":", 1)[1].split()
+        elif schedule:
+            info["schedules"][schedule[1]] = tuple(int(v) for v in schedule.groups()[1:])
     return info
 
 
