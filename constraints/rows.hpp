@@ -11,6 +11,8 @@
 #include "constraints/triarap.hpp"
 #include "constraints/xpbd.hpp"
 
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 
 namespace weft {
@@ -54,8 +56,8 @@ KOKKOS_INLINE_FUNCTION constexpr int row_kind_points(int kind) {
                               : 3;  // triarap, FEM
 }
 
-// f(std::integral_constant<int, K>{}) for K = kind (kRowKinds for a kind outside the enum): reaches code
-// compiled for one kind from a kind known at run time.
+// f(std::integral_constant<int, K>{}) for K = kind, a row kind: reaches code compiled for one kind from a
+// kind known at run time (host code; throws for a kind outside the enum).
 template <class F>
 inline decltype(auto) with_row_kind(int kind, const F& f) {
   switch (kind) {
@@ -67,7 +69,7 @@ inline decltype(auto) with_row_kind(int kind, const F& f) {
     case kRowPtPrim: return f(std::integral_constant<int, kRowPtPrim>{});
     case kRowFemDeviatoric: return f(std::integral_constant<int, kRowFemDeviatoric>{});
     case kRowFemHydrostatic: return f(std::integral_constant<int, kRowFemHydrostatic>{});
-    default: return f(std::integral_constant<int, kRowKinds>{});
+    default: throw std::logic_error("row kind " + std::to_string(kind));
   }
 }
 
