@@ -101,6 +101,125 @@ struct ProjectRows {
   }
 };
 
+// A team's scratch memory in the shape of a View (what evaluate_row reads and writes).
+template <class T>
+struct Slots {
+  T* p;
+  KOKKOS_INLINE_FUNCTION T& operator()(long i) const { return p[i]; }
+};
+
+static_assert(packed_row_size(kRowDistance) % 8 == 0 && packed_row_size(kRowBend) % 8 == 0 &&
+                  packed_row_size(kRowTriarap) % 8 == 0 && packed_row_size(kRowPin) % 8 == 0 &&
+                  packed_row_size(kRowAttach) % 8 == 0 && packed_row_size(kRowPtPrim) % 8 == 0,
+              "ProjectPatches copies rows as 8-byte words");
+
+// One patch colour of the sweep by patches (constraints/sweep_patches.hpp), one team per patch: the team
+// copies the patch's points, rows and lambdas into scratch memory, projects its cells one after another (a
+// cell's rows side by side, a barrier between cells) and writes its moving points and lambdas back. No two
+// patches of a colour share a moving point, so the result does not depend on the team size or the order of
+// the teams. Scratch layout and size: patch_scratch_bytes.
+template <class Exec>
+struct ProjectPatches {
+  using Mem = typename Exec::memory_space;
+  using Member = typename Kokkos::TeamPolicy<Exec>::member_type;
+  const void* rows[kRowKinds];  // kind K's rows (PackedRow<K>, points as places in the patch's table) in sweep order
+  long kind_begin[kRowKinds];   // the first row of kind K among all rows (the lambdas' order)
+  Kokkos::View<int*, Mem> cell_row;  // [cell * kRowKinds + K]: the cell's first row of kind K (cells + 1 of them)
+  Kokkos::View<long*, Mem> cell_begin, table_begin;
+  Kokkos::View<int*, Mem> table;
+  Kokkos::View<XpbdMaterial*, Mem> materials;
+  Kokkos::View<Vec3*, Mem> x, xs;
+  Kokkos::View<real*, Mem> w, lambda;
+  RowContext<Mem> ctx;
+  real h;
+  long first_patch;
+
+  template <class T>
+  KOKKOS_INLINE_FUNCTION static T* take(const Member& team, long n) {
+    return static_cast<T*>(team.team_scratch(0).get_shmem(n * long(sizeof(T))));
+  }
+
+  template <int K>
+  KOKKOS_INLINE_FUNCTION void project(const void* rows_k, int j, const Slots<Vec3>& sx, const Slots<Vec3>& sxs,
+                                      const Slots<real>& sw, real& l) const {
+    const PackedRow<K>& row = static_cast<const PackedRow<K>*>(rows_k)[j];
+    project_row_of<K>(row, materials(row.material), sx, sxs, sw, l, ctx, h);
+  }
+
+  KOKKOS_INLINE_FUNCTION void operator()(const Member& team) const {
+    constexpr int KR = kRowKinds;
+    const long p = first_patch + team.league_rank();
+    const long c0 = cell_begin(p), nc = cell_begin(p + 1) - c0;
+    const long t0 = table_begin(p), nt = table_begin(p + 1) - t0;
+    const Slots<Vec3> sx{take<Vec3>(team, nt)}, sxs{take<Vec3>(team, nt)};
+    const Slots<real> sw{take<real>(team, nt)};
+    const Slots<int> scell{take<int>(team, (nc + 1) * KR)};
+    int base[KR], count[KR];
+    long lam[KR], all = 0;
+    void* srow[KR];
+    for (int k = 0; k < KR; ++k) {
+      base[k] = cell_row(c0 * KR + k);
+      count[k] = cell_row((c0 + nc) * KR + k) - base[k];
+      lam[k] = all;
+      all += count[k];
+      srow[k] = take<char>(team, count[k] * packed_row_size(k));
+    }
+    const Slots<real> slam{take<real>(team, all)};
+
+    Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nt), [&](const long i) {
+      const int g = table(t0 + i);
+      sx(i) = x(g);
+      sxs(i) = xs(g);
+      sw(i) = w(g);
+    });
+    Kokkos::parallel_for(Kokkos::TeamThreadRange(team, (nc + 1) * KR), [&](const long e) {
+      scell(e) = cell_row(c0 * KR + e) - base[e % KR];
+    });
+    for (int k = 0; k < KR; ++k) {
+      const long words = count[k] * packed_row_size(k) / 8;
+      const uint64_t* src = static_cast<const uint64_t*>(rows[k]) + base[k] * packed_row_size(k) / 8;
+      uint64_t* dst = static_cast<uint64_t*>(srow[k]);
+      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, words), [&](const long e) { dst[e] = src[e]; });
+      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, long(count[k])),
+                           [&](const long j) { slam(lam[k] + j) = lambda(kind_begin[k] + base[k] + j); });
+    }
+    team.team_barrier();
+
+    for (long c = 0; c < nc; ++c) {
+      int lo[KR], n[KR], total = 0;
+      for (int k = 0; k < KR; ++k) {
+        lo[k] = scell(c * KR + k);
+        n[k] = scell((c + 1) * KR + k) - lo[k];
+        total += n[k];
+      }
+      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, total), [&](int j) {
+        int k = 0;
+        while (j >= n[k]) j -= n[k++];
+        const int r = lo[k] + j;
+        real& l = slam(lam[k] + r);
+        switch (k) {
+          case kRowDistance: project<kRowDistance>(srow[k], r, sx, sxs, sw, l); break;
+          case kRowBend: project<kRowBend>(srow[k], r, sx, sxs, sw, l); break;
+          case kRowTriarap: project<kRowTriarap>(srow[k], r, sx, sxs, sw, l); break;
+          case kRowPin: project<kRowPin>(srow[k], r, sx, sxs, sw, l); break;
+          case kRowAttach: project<kRowAttach>(srow[k], r, sx, sxs, sw, l); break;
+          case kRowPtPrim: project<kRowPtPrim>(srow[k], r, sx, sxs, sw, l); break;
+          case kRowFemDeviatoric: project<kRowFemDeviatoric>(srow[k], r, sx, sxs, sw, l); break;
+          default: project<kRowFemHydrostatic>(srow[k], r, sx, sxs, sw, l); break;
+        }
+      });
+      team.team_barrier();
+    }
+
+    Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nt), [&](const long i) {
+      if (sw(i) > 0) x(table(t0 + i)) = sx(i);
+    });
+    for (int k = 0; k < KR; ++k)
+      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, long(count[k])),
+                           [&](const long j) { lambda(kind_begin[k] + base[k] + j) = slam(lam[k] + j); });
+  }
+};
+
 // Every tether at once: each moves only its own point, towards a point that does not move.
 template <class Mem>
 struct ProjectTethers {
