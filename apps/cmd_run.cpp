@@ -193,9 +193,8 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   }
   auto sim = make_simulation(b, scene);
   if (!o.quiet)
-    std::printf("%s: %zu points, %zu triangles, %ld constraint rows %s, %ld tethers, backend %s\n",
-                scene.name.c_str(), scene.points.size(), scene.triangles.size(), sim->row_count(),
-                sim->sweep_description().c_str(),
+    std::printf("%s: %zu points, %zu triangles, %ld constraint rows in %d colours, %ld tethers, backend %s\n",
+                scene.name.c_str(), scene.points.size(), scene.triangles.size(), sim->row_count(), sim->colour_count(),
                 sim->tether_count(), backend_name(b));
 
   const io::CacheHeader header{scene.name, backend_name(b), scene.points.size(), scene.triangles, st,

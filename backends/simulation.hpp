@@ -7,7 +7,6 @@
 
 #include <cstdint>
 #include <memory>
-#include <string>
 #include <vector>
 
 namespace weft {
@@ -24,8 +23,7 @@ class Simulation {
   // Continue from a saved state (positions and velocities at `frame`): --resume gives the same bits as an
   // uninterrupted run, since nothing else carries over from one frame to the next.
   virtual void set_state(int frame, const std::vector<Vec3>& x, const std::vector<Vec3>& v) = 0;
-  // How a Gauss-Seidel sweep visits the rows ("in 18 colours", or its patches), for the run's header.
-  virtual std::string sweep_description() const = 0;
+  virtual int colour_count() const = 0;
   virtual long row_count() const = 0;
   virtual long tether_count() const = 0;
   // The q-quantile (0..1) of the triangles' strain (docs/solver.md, "Strain"; of the distance constraints'

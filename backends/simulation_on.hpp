@@ -50,7 +50,7 @@ class SimulationOn final : public Simulation {
   void set_state(int frame, const std::vector<Vec3>& x, const std::vector<Vec3>& v) override {
     solver_.set_state(frame, x, v);
   }
-  std::string sweep_description() const override { return solver_.sweep_description(); }
+  int colour_count() const override { return solver_.colour_count(); }
   long row_count() const override { return solver_.row_count(); }
   long tether_count() const override { return solver_.tether_count(); }
   real strain_quantile(double q) const override {

@@ -119,16 +119,6 @@ struct PackedRow<kRowPtPrim> {
   real data[4];
 };
 
-// sizeof(PackedRow<K>) for a kind known at run time (every one a multiple of 8 bytes: each holds a real).
-KOKKOS_INLINE_FUNCTION constexpr long packed_row_size(int kind) {
-  return kind == kRowDistance  ? long(sizeof(PackedRow<kRowDistance>))
-         : kind == kRowBend    ? long(sizeof(PackedRow<kRowBend>))
-         : kind == kRowPin     ? long(sizeof(PackedRow<kRowPin>))
-         : kind == kRowAttach  ? long(sizeof(PackedRow<kRowAttach>))
-         : kind == kRowPtPrim  ? long(sizeof(PackedRow<kRowPtPrim>))
-                               : long(sizeof(PackedRow<kRowTriarap>));  // triarap, FEM
-}
-
 // Row r of kind K, packed, with its material at `material` in the table.
 template <int K>
 PackedRow<K> pack_row(const Row& r, int material) {

@@ -108,7 +108,7 @@ void validate_scene(const Scene& s) {
   }
   const SolverSettings& st = s.settings;
   if (!(st.fps > 0) || st.substeps < 1 || st.iterations < 0 || st.collision_passes < 0 || st.smoothing_iterations < 0 ||
-      st.sweep_patch_points < 0 || st.frame_end < st.frame_start)
+      st.frame_end < st.frame_start)
     fail(s, "invalid solver settings (fps > 0, substeps >= 1, iterations/passes >= 0, frame_end >= frame_start)");
   if (!(st.tether_stretch == 0 || (st.tether_stretch >= 1 && st.tether_stretch < 1e6)))
     fail(s, "tether stretch " + std::to_string(st.tether_stretch) + " is neither 0 (no tethers) nor at least 1 "

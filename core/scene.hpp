@@ -29,8 +29,6 @@ struct SolverSettings {
   int iterations = 20;                   // Gauss-Seidel constraint iterations per substep
   int collision_passes = 2;              // per substep, spread evenly over the iterations
   int smoothing_iterations = 0;          // Jacobi passes after Gauss-Seidel (Vellum "smoothing iterations")
-  int sweep_patch_points = 0;            // > 0: Gauss-Seidel by patches of this many points (constraints/sweep_patches.hpp);
-                                         // 0: colour by colour over the whole cloth
   real tether_stretch = 0;               // 0: no tethers; else a point stays within this times its path length
                                          // at rest from the nearest hard-pinned point (constraints/tether.hpp)
   Vec3 gravity{0, -9.81, 0};             // m/s^2

@@ -5,7 +5,6 @@
 #pragma once
 #include "constraints/build_rows.hpp"
 #include "constraints/build_tethers.hpp"
-#include "constraints/sweep_patches.hpp"
 #include "constraints/triangle_strain.hpp"
 #include "core/colouring.hpp"
 #include "core/error.hpp"
@@ -28,7 +27,6 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
-#include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -53,17 +51,7 @@ class Solver {
   const SolverState<Exec>& state() const { return state_; }
   const SolverSettings& settings() const { return st_; }
   int frame() const { return frame_; }
-  // Device-wide levels of a sweep before the tethers: colours, or patch colours for the sweep by patches.
-  int colour_count() const { return patches_ ? patches_->patch_colours() : int(colour_kinds_.size()); }
-  std::string sweep_description() const {
-    if (!patches_) return "in " + std::to_string(colour_kinds_.size()) + " colours";
-    const SweepPatches& p = *patches_;
-    return "in " + std::to_string(p.patch_colours()) + " patch colours (" + std::to_string(p.patches()) +
-           " patches of up to " + std::to_string(p.patch_points) + " points, up to " + std::to_string(p.max_cells) +
-           " colours inside one)";
-  }
-  // The sweep's patches (constraints/sweep_patches.hpp), unless it sweeps colour by colour.
-  const std::optional<SweepPatches>& sweep_patches() const { return patches_; }
+  int colour_count() const { return int(colour_kinds_.size()); }
   long row_count() const { return long(lambda_.extent(0)); }
   long tether_count() const { return long(tethers_.extent(0)); }
   // Bytes of the packed rows on the device (each sweep reads them all).
@@ -213,18 +201,12 @@ class Solver {
   // the host one after another, since Kokkos 3.4's host graphs walk every path back to the root at each
   // submit, which grows as 2^joins.
   void gauss_seidel_sweep(real h) {
-    if (colour_kinds_.empty() && !patches_ && tethers_.extent(0) == 0) return;
+    if (colour_kinds_.empty() && tethers_.extent(0) == 0) return;
     if (!sweep_ || sweep_h_ != h) {
       constexpr bool side_by_side = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
       // (void): emplace returns the graph, whose type Kokkos marks [[nodiscard]].
       (void)sweep_.emplace(compat::create_graph(exec_, [&](const compat::GraphNode<Exec>& root) {
         compat::GraphNode<Exec> node = root;
-        for (int c = 0; patches_ && c < patches_->patch_colours(); ++c) {
-          const long first = patches_->colour_begin[size_t(c)], count = patches_->colour_begin[size_t(c) + 1] - first;
-          Kokkos::TeamPolicy<Exec> policy(exec_, int(count), patch_team_size_);
-          policy.set_scratch_size(0, Kokkos::PerTeam(patch_scratch_bytes_));
-          node = node.then_parallel_for("weft::project_patches", policy, project_patches(first, h));
-        }
         for (const std::vector<KindRange>& colour : colour_kinds_) {
           if (!side_by_side) {
             for (const KindRange& k : colour) node = project_kind(node, k, h);
@@ -284,10 +266,6 @@ class Solver {
   }
 
  private:
-  template <int... K>
-  static auto packed_views(std::integer_sequence<int, K...>) -> std::tuple<View<PackedRow<K>*>...>;
-  using PackedViews = decltype(packed_views(std::make_integer_sequence<int, kRowKinds>{}));
-
   // The rows [begin, end) of one colour, all of one kind.
   struct KindRange {
     long begin, end;
@@ -303,29 +281,6 @@ class Solver {
           kernels::ProjectRows<Mem, K>{rows_of<K>(), kind_begin_[K], materials_, state_.x, state_.x_start, state_.w,
                                        lambda_, RowContext<Mem>{targets_, state_.collider_x}, h});
     });
-  }
-
-  // The kernel for the patches of one patch colour, from `first` on in sweep order.
-  kernels::ProjectPatches<Exec> project_patches(long first, real h) const {
-    kernels::ProjectPatches<Exec> f{};
-    std::apply([&](const auto&... v) {
-      int k = 0;
-      ((f.rows[k++] = v.data()), ...);
-    }, patch_packed_);
-    for (int k = 0; k < kRowKinds; ++k) f.kind_begin[k] = kind_begin_[k];
-    f.cell_row = patch_cell_row_;
-    f.cell_begin = patch_cell_begin_;
-    f.table_begin = patch_table_begin_;
-    f.table = patch_table_;
-    f.materials = materials_;
-    f.x = state_.x;
-    f.xs = state_.x_start;
-    f.w = state_.w;
-    f.lambda = lambda_;
-    f.ctx = RowContext<Mem>{targets_, state_.collider_x};
-    f.h = h;
-    f.first_patch = first;
-    return f;
   }
 
   // The packed rows of kind K, the rows [kind_begin_[K], kind_begin_[K + 1]) of all.
@@ -427,33 +382,22 @@ class Solver {
     const size_t n = sc.points.size(), nr = rows.size();
     std::vector<char> movable(n);
     for (size_t i = 0; i < n; ++i) movable[i] = w_host_[i] > 0;
-    // Each row's group, in the order the sweep visits them: its colour, or for the sweep by patches its
-    // cell (the rows that move no point last, in a group the sweep skips).
-    std::vector<int> group(nr);
-    long nc = 0;
-    if (st_.sweep_patch_points > 0) {
-      patches_ = build_sweep_patches(rows, sc.points.position, movable, st_.sweep_patch_points);
-      nc = patches_->cells() + 1;
-      for (size_t r = 0; r < nr; ++r) group[r] = patches_->row_cell[r] < 0 ? int(nc - 1) : patches_->row_cell[r];
-    } else {
-      Colouring col = colour_greedy(long(nr), long(n), movable, [&](long r, int(&out)[8]) {
-        return row_particles(rows[r], out);
-      });
-      nc = col.count;
-      group = std::move(col.colour);
-    }
-    // Rows by kind, then group, each (kind, group) in input order (a stable counting sort): every kind's
-    // rows are contiguous, and so are a group's rows of one kind. The order inside a group changes no
+    const Colouring col = colour_greedy(long(nr), long(n), movable, [&](long r, int(&out)[8]) {
+      return row_particles(rows[r], out);
+    });
+    // Rows by kind, then colour, each (kind, colour) in input order (a stable counting sort): every kind's
+    // rows are contiguous, and so are a colour's rows of one kind. The order inside a colour changes no
     // result, since its rows share no moving point.
+    const long nc = col.count;
     std::vector<long> key_offset(size_t(kRowKinds * nc) + 1, 0);
-    const auto key = [&](size_t r) { return size_t(rows[r].kind * nc + group[r]); };
+    const auto key = [&](size_t r) { return size_t(rows[r].kind * nc + col.colour[r]); };
     for (size_t r = 0; r < nr; ++r) ++key_offset[key(r) + 1];
     for (size_t k = 0; k + 1 < key_offset.size(); ++k) key_offset[k + 1] += key_offset[k];
     std::vector<long> place(nr), fill(key_offset.begin(), key_offset.end() - 1);
     for (size_t r = 0; r < nr; ++r) place[r] = fill[key(r)]++;
     for (int k = 0; k <= kRowKinds; ++k) kind_begin_[k] = key_offset[size_t(k * nc)];
-    if (!patches_) colour_kinds_.assign(size_t(nc), {});
-    for (long c = 0; c < nc && !patches_; ++c)
+    colour_kinds_.assign(size_t(nc), {});
+    for (long c = 0; c < nc; ++c)
       for (int k = 0; k < kRowKinds; ++k)
         if (key_offset[size_t(k * nc + c) + 1] > key_offset[size_t(k * nc + c)])
           colour_kinds_[size_t(c)].push_back({key_offset[size_t(k * nc + c)], key_offset[size_t(k * nc + c) + 1], k});
@@ -475,20 +419,19 @@ class Solver {
     materials_ = upload(materials, "weft::materials");
     std::vector<size_t> by_place(nr);
     for (size_t r = 0; r < nr; ++r) by_place[size_t(place[r])] = r;
-    upload_packed(packed_, rows, material, by_place, nullptr, std::make_integer_sequence<int, kRowKinds>{});
-    if (patches_) upload_patches(rows, material, by_place, key_offset, nc);
+    upload_packed(rows, material, by_place, std::make_integer_sequence<int, kRowKinds>{});
     tethers_ = upload(build_tethers(sc, w_host_), "weft::tethers");
     lambda_ = View<real*>("weft::lambda", nr);
     tri_rest_ = upload(triangle_rest_shapes(sc), "weft::triangle_rest");
     row_scratch_ = View<real*>("weft::row_scratch", std::max(nr, tri_rest_.extent(0)));
-    // Jacobi gather lists: for each point, the (row, slot) entries that move it, in the sweep's order (the
+    // Jacobi gather lists: for each point, the (row, slot) entries that move it, in colour order (the
     // order of the sum, so it is kept apart from the storage order).
     if (st_.smoothing_iterations > 0) {
       std::vector<size_t> by_colour(nr);
       std::vector<long> colour_fill(size_t(nc) + 1, 0);
-      for (size_t r = 0; r < nr; ++r) ++colour_fill[size_t(group[r]) + 1];
+      for (size_t r = 0; r < nr; ++r) ++colour_fill[size_t(col.colour[r]) + 1];
       for (long c = 0; c < nc; ++c) colour_fill[size_t(c) + 1] += colour_fill[size_t(c)];
-      for (size_t r = 0; r < nr; ++r) by_colour[size_t(colour_fill[size_t(group[r])]++)] = r;
+      for (size_t r = 0; r < nr; ++r) by_colour[size_t(colour_fill[size_t(col.colour[r])]++)] = r;
       std::vector<long> off(n + 1, 0), slots;
       for (const Row& r : rows)
         for (int k = 0; k < r.n; ++k) ++off[r.idx[k] + 1];
@@ -503,11 +446,9 @@ class Solver {
     }
   }
 
-  // Every kind's packed rows into out, from the rows in storage order (by_place) and their material indices;
-  // with `local`, each row's points as their places in its patch's table.
+  // Every kind's packed rows, from the rows in storage order (by_place) and their material indices.
   template <int... K>
-  void upload_packed(PackedViews& out, const std::vector<Row>& rows, const std::vector<int>& material,
-                     const std::vector<size_t>& by_place, const std::vector<std::array<int, 5>>* local,
+  void upload_packed(const std::vector<Row>& rows, const std::vector<int>& material, const std::vector<size_t>& by_place,
                      std::integer_sequence<int, K...>) {
     const auto one = [&](auto kind) {
       constexpr int Kind = decltype(kind)::value;
@@ -515,50 +456,17 @@ class Solver {
       packed.reserve(size_t(kind_begin_[Kind + 1] - kind_begin_[Kind]));
       for (long p = kind_begin_[Kind]; p < kind_begin_[Kind + 1]; ++p) {
         const size_t r = by_place[size_t(p)];
-        Row row = rows[r];
-        for (int k = 0; local && k < row.n; ++k) row.idx[k] = (*local)[r][size_t(k)];
-        packed.push_back(pack_row<Kind>(row, material[r]));
+        packed.push_back(pack_row<Kind>(rows[r], material[r]));
       }
-      std::get<Kind>(out) = upload(packed, local ? "weft::patch_rows" : "weft::rows");
-      if (!local) row_storage_bytes_ += long(packed.size() * sizeof(PackedRow<Kind>));
+      std::get<Kind>(packed_) = upload(packed, "weft::rows");
+      row_storage_bytes_ += long(packed.size() * sizeof(PackedRow<Kind>));
     };
     (one(std::integral_constant<int, K>{}), ...);
   }
 
-  // The sweep by patches on the device: rows with their points' places in their patches' tables, each
-  // cell's first row of each kind, the patches' cells and point tables, and the scratch size and team size.
-  void upload_patches(const std::vector<Row>& rows, const std::vector<int>& material, const std::vector<size_t>& by_place,
-                      const std::vector<long>& key_offset, long groups) {
-    const SweepPatches& sp = *patches_;
-    upload_packed(patch_packed_, rows, material, by_place, &sp.local, std::make_integer_sequence<int, kRowKinds>{});
-    const long cells = sp.cells();
-    std::vector<int> cell_row(size_t((cells + 1) * kRowKinds));
-    for (long c = 0; c <= cells; ++c)
-      for (int k = 0; k < kRowKinds; ++k)
-        cell_row[size_t(c * kRowKinds + k)] = int(key_offset[size_t(k * groups + c)] - kind_begin_[k]);
-    patch_scratch_bytes_ = 0;
-    long rows_in_cells = 0;
-    for (long p = 0; p < sp.patches(); ++p) {
-      const long c0 = sp.cell_begin[size_t(p)], c1 = sp.cell_begin[size_t(p) + 1];
-      std::array<long, kRowKinds> kind_rows{};
-      for (int k = 0; k < kRowKinds; ++k) {
-        kind_rows[size_t(k)] = cell_row[size_t(c1 * kRowKinds + k)] - cell_row[size_t(c0 * kRowKinds + k)];
-        rows_in_cells += kind_rows[size_t(k)];
-      }
-      patch_scratch_bytes_ = std::max(patch_scratch_bytes_, patch_scratch_bytes(sp.table_begin[size_t(p) + 1] -
-                                                                                    sp.table_begin[size_t(p)],
-                                                                                kind_rows, c1 - c0));
-    }
-    // A thread a row of an average cell (at least a warp, at most 256) on the device; one on the host, where
-    // a team's threads would only wait for one another.
-    constexpr bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
-    const long per_cell = cells > 0 ? (rows_in_cells + cells - 1) / cells : 1;
-    patch_team_size_ = host ? 1 : int(std::min(256L, std::max(32L, (per_cell + 31) / 32 * 32)));
-    patch_cell_row_ = upload(cell_row, "weft::patch_cell_row");
-    patch_cell_begin_ = upload(sp.cell_begin, "weft::patch_cell_begin");
-    patch_table_begin_ = upload(sp.table_begin, "weft::patch_table_begin");
-    patch_table_ = upload(sp.table, "weft::patch_table");
-  }
+  template <int... K>
+  static auto packed_views(std::integer_sequence<int, K...>) -> std::tuple<View<PackedRow<K>*>...>;
+  using PackedViews = decltype(packed_views(std::make_integer_sequence<int, kRowKinds>{}));
 
   Exec exec_;
   SolverSettings st_;
@@ -573,14 +481,7 @@ class Solver {
   long row_storage_bytes_ = 0;
   View<Tether*> tethers_;
   View<TriangleRest*> tri_rest_;  // for the strain statistics
-  std::vector<std::vector<KindRange>> colour_kinds_;  // per colour, its rows by kind (the sweep colour by colour)
-  std::optional<SweepPatches> patches_;               // the sweep by patches
-  PackedViews patch_packed_;                          // its rows, points as places in their patch's table
-  View<int*> patch_cell_row_;
-  View<long*> patch_cell_begin_, patch_table_begin_;
-  View<int*> patch_table_;
-  long patch_scratch_bytes_ = 0;
-  int patch_team_size_ = 1;
+  std::vector<std::vector<KindRange>> colour_kinds_;  // per colour, its rows by kind
   View<Vec3**> target_frames_, collider_frames_;
   View<Vec3*> targets_, targets_before_;  // targets at the end and at the start of the substep
   View<int*> kin_point_, kin_target_;

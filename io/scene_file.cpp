@@ -11,7 +11,7 @@ namespace {
 // A field added to these structs must be added to the file (and the format version raised): the sizes are
 // checked so that the scene file does not silently drop it (a field that fits in padding escapes the check).
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is stored as 3 doubles");
-static_assert(sizeof(SolverSettings) == 192, "SolverSettings changed: update the settings tables below");
+static_assert(sizeof(SolverSettings) == 184, "SolverSettings changed: update the settings tables below");
 static_assert(sizeof(XpbdMaterial) == 24 && sizeof(DistanceConstraint) == 40 && sizeof(BendConstraint) == 48 &&
                   sizeof(TriarapConstraint) == 88 && sizeof(PinConstraint) == 72 && sizeof(AttachConstraint) == 64 &&
                   sizeof(PtPrimConstraint) == 96 && sizeof(FemConstraint) == 88,
@@ -38,7 +38,6 @@ const std::pair<const char*, int SolverSettings::*> kIntSettings[] = {
     {"iterations", &SolverSettings::iterations},
     {"collision_passes", &SolverSettings::collision_passes},
     {"smoothing_iterations", &SolverSettings::smoothing_iterations},
-    {"sweep_patch_points", &SolverSettings::sweep_patch_points},
     {"impact_zone_sweeps", &SolverSettings::impact_zone_sweeps},
     {"max_early_passes", &SolverSettings::max_early_passes},
 };
@@ -351,8 +350,6 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
   }
   for (const auto& [name, m] : kIntSettings) {
     if (std::strcmp(name, "max_early_passes") == 0 && !h5::has_attribute(f, group, name)) continue;
-    // Absent in files written before the sweep by patches: they swept colour by colour.
-    if (std::strcmp(name, "sweep_patch_points") == 0 && !h5::has_attribute(f, group, name)) { s.*m = 0; continue; }
     s.*m = h5::read_attribute<int>(f, group, name);
   }
   // Files written before the proximity model ran the paper's.

@@ -88,8 +88,6 @@ const std::vector<Entry>& entries() {
        [](Scene& s, const std::string& v) { s.settings.collision_passes = to_int(v, 0); }},
       {"smoothing", "integer >= 0: Jacobi smoothing iterations per substep",
        [](Scene& s, const std::string& v) { s.settings.smoothing_iterations = to_int(v, 0); }},
-      {"sweep_patch_points", "integer >= 0: points per patch of the Gauss-Seidel sweep (0: colour by colour over the cloth)",
-       [](Scene& s, const std::string& v) { s.settings.sweep_patch_points = to_int(v, 0); }},
       {"damping", "number >= 0, 1/s: velocity damping",
        [](Scene& s, const std::string& v) { s.settings.velocity_damping = to_real(v); }},
       {"gravity", "x,y,z in m/s^2", [](Scene& s, const std::string& v) { s.settings.gravity = to_vec3(v); }},

@@ -1,6 +1,5 @@
-// One constraint iteration of the XPBD solver: Solver::gauss_seidel_sweep (core/solver.hpp), colour by
-// colour (one kernel launch per colour and row kind) and by patches of 64 points (one launch per patch
-// colour), over every distance and bend row, on the hanging sheet (cloth_grid.hpp) one substep
+// One constraint iteration of the XPBD solver: Solver::gauss_seidel_sweep (core/solver.hpp), one kernel
+// launch per colour and row kind over every distance and bend row, on the hanging sheet (cloth_grid.hpp) one substep
 // after the start, so positions, lambdas and x_start are those of a running solve. Counter `bytes`: what a
 // sweep must move at the least (every packed row and lambda once, every point's position, start position and
 // inverse mass read and its position written once); `bytes_per_second` against the card's memory bandwidth
@@ -14,14 +13,11 @@ namespace {
 
 using Exec = WEFT_BENCH_EXECSPACE;
 
-// PatchPoints: 0 sweeps colour by colour, else by patches of that many points (constraints/sweep_patches.hpp).
-template <int PatchPoints>
 struct SweepFixture {
   std::unique_ptr<weft::Solver<Exec>> solver;
   weft::real h = 0;
   explicit SweepFixture(long triangles) {
-    weft::Scene scene = weft::bench::hanging_sheet(triangles);
-    scene.settings.sweep_patch_points = PatchPoints;
+    const weft::Scene scene = weft::bench::hanging_sheet(triangles);
     h = 1 / (scene.settings.fps * scene.settings.substeps);
     solver = std::make_unique<weft::Solver<Exec>>(scene);
     solver->substep(0);
@@ -29,9 +25,8 @@ struct SweepFixture {
   }
 };
 
-template <int PatchPoints>
-void sweep(benchmark::State& state) {
-  SweepFixture<PatchPoints>& f = weft::bench::fixture<SweepFixture<PatchPoints>>(state.range(0));
+void gauss_seidel_sweep(benchmark::State& state) {
+  SweepFixture& f = weft::bench::fixture<SweepFixture>(state.range(0));
   const Exec exec;
   for (auto _ : state) {
     f.solver->gauss_seidel_sweep(f.h);
@@ -46,13 +41,10 @@ void sweep(benchmark::State& state) {
   state.counters["bytes"] = bytes;
   state.counters["bytes_per_second"] = benchmark::Counter(bytes, benchmark::Counter::kIsIterationInvariantRate);
 }
-void sweep_sizes(benchmark::internal::Benchmark* b) {
-  weft::bench::sizes(b, "tris", {10000, 100000, 300000, 1000000});  // the skirt's size besides the usual three
+// The skirt's size (300K triangles) besides the usual three.
+BENCHMARK(gauss_seidel_sweep)->Apply([](benchmark::internal::Benchmark* b) {
+  weft::bench::sizes(b, "tris", {10000, 100000, 300000, 1000000});
   b->Unit(benchmark::kMicrosecond);
-}
-void gauss_seidel_sweep(benchmark::State& state) { sweep<0>(state); }
-void gauss_seidel_sweep_by_patches(benchmark::State& state) { sweep<64>(state); }
-BENCHMARK(gauss_seidel_sweep)->Apply(sweep_sizes);
-BENCHMARK(gauss_seidel_sweep_by_patches)->Apply(sweep_sizes);
+});
 
 }  // namespace
