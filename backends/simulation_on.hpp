@@ -1,4 +1,4 @@
-// Simulation on one execution space; included only by backends/<backend>.cpp (and tests).
+// Simulation on one execution space; included only by backends/on_backend_impl.hpp (and tests).
 #pragma once
 #include "backends/simulation.hpp"
 #include "collision/collision_handler.hpp"
