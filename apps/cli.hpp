@@ -33,12 +33,12 @@ void apply_contact_model(const std::string& value, ContactModel& model);
 // --pair-refresh on|off (run, bench): overrides the scene's pair_refresh when not empty.
 void add_pair_refresh_option(CLI::App* cmd, std::string& value);
 void apply_pair_refresh(const std::string& value, bool& pair_refresh);
-// --contact-solver gauss-seidel|jacobi (run, bench): overrides the scene's jacobi_contacts when not empty.
+// --contact-solver gauss-seidel|jacobi (run, bench): overrides the scene's contact_solver when not empty.
 void add_contact_solver_option(CLI::App* cmd, std::string& value);
-void apply_contact_solver(const std::string& value, bool& jacobi_contacts);
-// --ccd-span substep|pass (run, bench): overrides the scene's ccd_per_pass when not empty.
+void apply_contact_solver(const std::string& value, ContactSolver& solver);
+// --ccd-span substep|pass (run, bench): overrides the scene's ccd_span when not empty.
 void add_ccd_span_option(CLI::App* cmd, std::string& value);
-void apply_ccd_span(const std::string& value, bool& ccd_per_pass);
+void apply_ccd_span(const std::string& value, CcdSpan& span);
 // --tethers STRETCH (run, bench): overrides the scene's tether_stretch when not empty (0 switches them off).
 void add_tethers_option(CLI::App* cmd, std::string& value);
 void apply_tethers(const std::string& value, real& tether_stretch);

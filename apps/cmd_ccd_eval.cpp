@@ -1,7 +1,7 @@
 // `weft ccd-eval <dir>`: runs the CCD narrow phase on every benchmark query file below dir and scores it
 // against the files' ground truth.
 #include "apps/cli.hpp"
-#include "collision/ccd_batch.hpp"
+#include "backends/ccd_batch.hpp"
 #include "collision/ccd_query_file.hpp"
 
 #include <iostream>
@@ -10,35 +10,6 @@
 namespace weft::cli {
 
 namespace {
-
-template <class Exec>
-std::vector<CcdResult> evaluate_on(const CcdQueryFile& f, real ms, const CcdSettings& s) {
-  using Mem = typename Exec::memory_space;
-  Kokkos::View<Vec3*, Mem> rows("weft::ccd_rows", f.rows.size());
-  auto rows_h = Kokkos::create_mirror_view(rows);
-  for (size_t i = 0; i < f.rows.size(); ++i) rows_h(i) = f.rows[i];
-  Kokkos::deep_copy(rows, rows_h);
-  Kokkos::View<CcdResult*, Mem> out("weft::ccd_results", f.size());
-  ccd_batch(Exec(), f.kind, Kokkos::View<const Vec3*, Mem>(rows), ms, s, out);
-  auto out_h = Kokkos::create_mirror_view(out);
-  Kokkos::deep_copy(out_h, out);
-  return std::vector<CcdResult>(out_h.data(), out_h.data() + out_h.extent(0));
-}
-
-std::vector<CcdResult> evaluate(Backend b, const CcdQueryFile& f, real ms, const CcdSettings& s) {
-  switch (b) {
-#ifdef KOKKOS_ENABLE_SERIAL
-    case Backend::Serial: return evaluate_on<Kokkos::Serial>(f, ms, s);
-#endif
-#ifdef KOKKOS_ENABLE_OPENMP
-    case Backend::OpenMP: return evaluate_on<Kokkos::OpenMP>(f, ms, s);
-#endif
-#ifdef KOKKOS_ENABLE_CUDA
-    case Backend::Cuda: return evaluate_on<Kokkos::Cuda>(f, ms, s);
-#endif
-    default: throw Error(std::string("backend ") + backend_name(b) + " is not compiled in", 2);
-  }
-}
 
 struct CcdEvalOptions {
   std::string dir;
@@ -67,7 +38,7 @@ void add_ccd_eval(CLI::App& app, const GlobalOptions& g, Action& run) {
       Runtime rt(g.threads);
       long queries = 0, false_negatives = 0, false_positives = 0;
       for (const auto& f : files) {
-        const auto results = evaluate(b, f, o.ms, o.settings);
+        const auto results = ccd_batch(b, f.kind, f.rows, o.ms, o.settings);
         queries += f.size();
         std::cout << f.path << " queries " << f.size();
         if (f.truth.empty()) {

@@ -3,8 +3,8 @@
 // frame (default: the last; --all-frames: every one) without simulating; given an OBJ mesh (another
 // simulator's output, say), in that static mesh. Last line: `intersections <N>`.
 #include "apps/cli.hpp"
+#include "backends/intersection_counter.hpp"
 #include "backends/simulation.hpp"
-#include "constraints/vellum_cloth.hpp"
 #include "io/cache_file.hpp"
 #include "io/hdf5_util.hpp"
 #include "io/obj.hpp"
@@ -32,19 +32,11 @@ bool is_cache(const std::string& path) {
   return io::h5::format_of(io::h5::File::open(path)) == io::kCacheFormat;
 }
 
-// A mesh as a one-piece cloth scene that is never stepped: only its triangles and positions matter.
-Scene static_mesh_scene(const std::string& name, const std::vector<Vec3>& x, const std::vector<std::array<int, 3>>& tris) {
+// The counter for a mesh's triangles, made once and used for each of its frames.
+std::unique_ptr<IntersectionCounter> counter(Backend b, const std::string& name,
+                                             const std::vector<std::array<int, 3>>& tris) {
   if (tris.empty()) throw InputError(name + ": no triangles");
-  Scene s;
-  s.name = name;
-  add_cloth_piece(s, x, tris, ClothMaterial{});
-  s.settings.self_collision = false;
-  return s;
-}
-
-long mesh_intersections(Backend b, const std::string& name, const std::vector<Vec3>& x,
-                        const std::vector<std::array<int, 3>>& tris) {
-  return make_simulation(b, static_mesh_scene(name, x, tris))->intersections();
+  return make_intersection_counter(b, name, tris);
 }
 
 // Frames of a cache: the one asked for (default: the last), or all of them with a line each and, last, the
@@ -54,12 +46,12 @@ int check_cache(Backend b, const Options& o) {
   if (o.res > 0) throw Error("--res applies to built-in scenes, not to a cache", 2);
   if (c.frame_count() == 0) throw InputError(o.scene + ": the cache holds no frames");
   const std::vector<int>& frames = c.frames();
-  const auto& tris = c.header().triangles;
   if (o.all_frames) {
     if (o.frame >= 0) throw Error("--frame and --all-frames exclude each other", 2);
+    const auto count = counter(b, o.scene, c.header().triangles);
     long worst = 0;
     for (int k = 0; k < c.frame_count(); ++k) {
-      const long n = mesh_intersections(b, o.scene, c.positions(k), tris);
+      const long n = count->count(c.positions(k));
       std::printf("frame %d  intersections %ld\n", frames[k], n);
       worst = std::max(worst, n);
     }
@@ -73,7 +65,7 @@ int check_cache(Backend b, const Options& o) {
       throw Error(o.scene + ": frame " + std::to_string(o.frame) + " is not in the cache (frames " +
                       std::to_string(frames.front()) + "-" + std::to_string(frames.back()) + ")", 2);
   }
-  std::printf("frame %d\nintersections %ld\n", frames[k], mesh_intersections(b, o.scene, c.positions(k), tris));
+  std::printf("frame %d\nintersections %ld\n", frames[k], counter(b, o.scene, c.header().triangles)->count(c.positions(k)));
   return 0;
 }
 
@@ -83,7 +75,7 @@ int check(const GlobalOptions& g, const Options& o) {
   if (is_obj(o.scene)) {
     if (o.frame >= 0 || o.res > 0 || o.all_frames) throw Error("--frame, --all-frames and --res apply to scenes, not to an OBJ mesh", 2);
     const io::TriMesh m = io::read_obj(o.scene);
-    std::printf("intersections %ld\n", mesh_intersections(b, o.scene, m.positions, m.triangles));
+    std::printf("intersections %ld\n", counter(b, o.scene, m.triangles)->count(m.positions));
     return 0;
   }
   if (is_cache(o.scene)) return check_cache(b, o);

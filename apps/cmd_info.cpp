@@ -42,8 +42,7 @@ void print_settings(const SolverSettings& s) {
             << "  impact zone smoothing " << (s.impact_zone_smoothing ? "on" : "off") << " (epsilon "
             << s.impact_zone_epsilon << ", " << s.impact_zone_sweeps << " sweeps), crossing fail-safe "
             << (s.collision_failsafe ? "on" : "off") << ", contact solver "
-            << (s.jacobi_contacts ? "jacobi" : "gauss-seidel") << ", CCD span "
-            << (s.ccd_per_pass ? "pass" : "substep") << ", tethers " << tethers.str() << "\n";
+            << contact_solver_name(s.contact_solver) << ", CCD span " << ccd_span_name(s.ccd_span) << ", tethers " << tethers.str() << "\n";
 }
 
 void print_scene(const std::string& path) {

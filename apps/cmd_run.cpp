@@ -171,8 +171,8 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   apply_self_collision(o.self_collision, st.self_collision);
   apply_contact_model(o.contact_model, st.contact_model);
   apply_pair_refresh(o.pair_refresh, st.pair_refresh);
-  apply_contact_solver(o.contact_solver, st.jacobi_contacts);
-  apply_ccd_span(o.ccd_span, st.ccd_per_pass);
+  apply_contact_solver(o.contact_solver, st.contact_solver);
+  apply_ccd_span(o.ccd_span, st.ccd_span);
   apply_tethers(o.tethers, st.tether_stretch);
   std::unique_ptr<io::GeoFrameWriter> geo;  // --geo-sequence; a --like file is checked before anything is written
   try {

@@ -64,8 +64,8 @@ void add_contact_solver_option(CLI::App* cmd, std::string& value) {
       ->check(CLI::IsMember({"gauss-seidel", "jacobi"}));
 }
 
-void apply_contact_solver(const std::string& value, bool& jacobi_contacts) {
-  if (!value.empty()) jacobi_contacts = value == "jacobi";
+void apply_contact_solver(const std::string& value, ContactSolver& solver) {
+  if (!value.empty()) solver = *parse_contact_solver(value);
 }
 
 void add_ccd_span_option(CLI::App* cmd, std::string& value) {
@@ -75,8 +75,8 @@ void add_ccd_span_option(CLI::App* cmd, std::string& value) {
       ->check(CLI::IsMember({"substep", "pass"}));
 }
 
-void apply_ccd_span(const std::string& value, bool& ccd_per_pass) {
-  if (!value.empty()) ccd_per_pass = value == "pass";
+void apply_ccd_span(const std::string& value, CcdSpan& span) {
+  if (!value.empty()) span = *parse_ccd_span(value);
 }
 
 void add_tethers_option(CLI::App* cmd, std::string& value) {

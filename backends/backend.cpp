@@ -8,7 +8,7 @@
 
 namespace weft {
 
-std::vector<std::string> describe_cuda_devices();  // backends/cuda.cpp; empty without CUDA
+std::vector<std::string> describe_cuda_devices();  // backends/cuda_devices.cpp; empty without CUDA
 
 const char* backend_name(Backend b) {
   switch (b) {

@@ -1,9 +1,8 @@
-// The solver and the solvability check instantiated for Kokkos::Serial. They share one translation unit so
-// that the templates they both use (LBVH, sort, reductions) are instantiated for this backend only once.
-#include "backends/simulation_on.hpp"
-#include "collision/body_cleaning.hpp"
+// What weft runs on Kokkos::Serial (backends/on_backend.hpp): the solver, the solvability check, CCD batches,
+// intersection counts. One translation unit, so that the templates they share (LBVH, sort, reductions) are
+// instantiated for this backend once.
+#include "backends/on_backend_impl.hpp"
 
 namespace weft {
-std::unique_ptr<Simulation> make_simulation_serial(const Scene& s) { return std::make_unique<SimulationOn<Kokkos::Serial>>(s); }
-BodyCleaning clean_body_serial(const Scene& s, const CleaningSettings& cs) { return clean_body_on<Kokkos::Serial>(s, cs); }
+template struct OnBackend<Kokkos::Serial>;
 }  // namespace weft

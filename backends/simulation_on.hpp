@@ -1,8 +1,8 @@
-// Simulation on one execution space; included only by backends/<backend>.cpp (and tests).
+// Simulation on one execution space; included only by backends/on_backend_impl.hpp (and tests).
 #pragma once
 #include "backends/simulation.hpp"
 #include "collision/collision_handler.hpp"
-#include "collision/tri_tri.hpp"
+#include "collision/mesh_intersections.hpp"
 #include "core/solver.hpp"
 
 #include <algorithm>
@@ -12,18 +12,13 @@ namespace weft {
 template <class Exec>
 class SimulationOn final : public Simulation {
  public:
-  explicit SimulationOn(const Scene& scene) : solver_(scene) {
+  explicit SimulationOn(const Scene& scene) : solver_(scene), intersections_(scene.triangles) {
     // A scene pays only for the stages it uses: no collision stage without colliders or self collision.
     if (!scene.colliders.empty() || scene.settings.self_collision) {
       auto handler = std::make_unique<CollisionHandler<Exec>>(scene);
       collisions_ = handler.get();
       solver_.set_collision_stage(std::move(handler));
     }
-    tris_ = Kokkos::View<int* [3], typename Exec::memory_space>("weft::sim_tris", scene.triangles.size());
-    auto m = Kokkos::create_mirror_view(tris_);
-    for (size_t t = 0; t < scene.triangles.size(); ++t)
-      for (int k = 0; k < 3; ++k) m(t, k) = scene.triangles[t][k];
-    Kokkos::deep_copy(tris_, m);
   }
   FrameStats step_frame() override {
     if (!collisions_) return solver_.step_frame();
@@ -57,9 +52,7 @@ class SimulationOn final : public Simulation {
     return Solver<Exec>::quantile(solver_.strains(), q);
   }
   long intersections() const override {
-    Lbvh<Exec> bvh;
-    return count_intersections(bvh, Kokkos::View<const Vec3*, typename Exec::memory_space>(solver_.state().x),
-                               Kokkos::View<const int* [3], typename Exec::memory_space>(tris_));
+    return intersections_.count(Kokkos::View<const Vec3*, typename Exec::memory_space>(solver_.state().x));
   }
 
  private:
@@ -72,7 +65,7 @@ class SimulationOn final : public Simulation {
   }
   Solver<Exec> solver_;
   CollisionHandler<Exec>* collisions_ = nullptr;  // owned by solver_
-  Kokkos::View<int* [3], typename Exec::memory_space> tris_;
+  mutable MeshIntersections<Exec> intersections_;  // a diagnostic: its tree is kept between calls
 };
 
 }  // namespace weft

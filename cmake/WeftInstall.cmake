@@ -1,8 +1,10 @@
 # `cmake --install build/<preset> --prefix DIR` makes DIR a CMake package that other projects use with
 # find_package(weft) (docs/library.md):
-#   DIR/lib/libweft_solver.a, libweft_io.a               weft::solver, weft::io (and weft::fp_policy, which
-#                                                        weft::solver carries: the flags that keep every
-#                                                        backend bitwise identical apply to callers' kernels too)
+#   DIR/lib/libweft_solver.a                             weft::solver (and weft::fp_policy, which weft::solver
+#                                                        carries: the flags that keep every backend bitwise
+#                                                        identical apply to callers' kernels too)
+#   DIR/lib/libweft_io_{formats,hdf5,render}.a           weft::io_formats, weft::io_hdf5, weft::io_render, and
+#                                                        weft::io, which links all three
 #   DIR/include/weft/{core,constraints,collision,backends,io}/*.hpp, weft_version.hpp
 #   DIR/lib/cmake/weft/weftConfig.cmake, weftConfigVersion.cmake, weftTargets*.cmake
 include(CMakePackageConfigHelpers)
@@ -11,7 +13,7 @@ set(WEFT_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/weft)
 set(_weft_targets weft_solver weft_fp_policy)
 set(WEFT_PACKAGE_HAS_IO FALSE)
 if(TARGET weft_io)
-  list(APPEND _weft_targets weft_io)
+  list(APPEND _weft_targets weft_io_formats weft_io_hdf5 weft_io_render weft_io)
   set(WEFT_PACKAGE_HAS_IO TRUE)
 endif()
 install(TARGETS ${_weft_targets} EXPORT weftTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})

@@ -3,6 +3,7 @@
 #include "collision/ccd.hpp"
 
 #include <Kokkos_Core.hpp>
+#include <vector>
 
 namespace weft {
 
@@ -32,6 +33,21 @@ void ccd_batch(const Exec& exec, CcdKind kind, const Kokkos::View<const Vec3*, t
   const long n = static_cast<long>(rows.extent(0) / 8);
   Kokkos::parallel_for("weft::ccd_batch", Kokkos::RangePolicy<Exec>(exec, 0, n),
                        CcdBatch<typename Exec::memory_space>{kind, rows, ms, settings, out});
+}
+
+// The same from host rows to host results, on a default instance of Exec.
+template <class Exec>
+std::vector<CcdResult> ccd_batch_on(CcdKind kind, const std::vector<Vec3>& rows, real ms, const CcdSettings& settings) {
+  using Mem = typename Exec::memory_space;
+  Kokkos::View<Vec3*, Mem> rows_d("weft::ccd_rows", rows.size());
+  auto rows_h = Kokkos::create_mirror_view(rows_d);
+  for (size_t i = 0; i < rows.size(); ++i) rows_h(i) = rows[i];
+  Kokkos::deep_copy(rows_d, rows_h);
+  Kokkos::View<CcdResult*, Mem> out("weft::ccd_results", rows.size() / 8);
+  ccd_batch(Exec(), kind, Kokkos::View<const Vec3*, Mem>(rows_d), ms, settings, out);
+  auto out_h = Kokkos::create_mirror_view(out);
+  Kokkos::deep_copy(out_h, out);
+  return std::vector<CcdResult>(out_h.data(), out_h.data() + out_h.extent(0));
 }
 
 }  // namespace weft

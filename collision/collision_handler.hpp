@@ -69,8 +69,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
     epsilon_ = st.impact_zone_epsilon;
     sweeps_ = st.impact_zone_sweeps;
     failsafe_ = st.collision_failsafe;
-    jacobi_ = st.jacobi_contacts;
-    per_pass_ = st.ccd_per_pass && st.collision_passes > 1;
+    jacobi_ = st.contact_solver == ContactSolver::Jacobi;
+    per_pass_ = st.ccd_span == CcdSpan::Pass && st.collision_passes > 1;
     passes_ = st.collision_passes;
     profile_ = st.profile;
     proximity_ = st.contact_model == ContactModel::Proximity;
@@ -145,7 +145,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     });
   }
 
-  // With ccd_per_pass, a pass after the first of its substep tests the motion since the previous pass
+  // With CcdSpan::Pass, a pass after the first of its substep tests the motion since the previous pass
   // (x_pass_ to x; colliders do not move within a substep): a later pass then sweeps its boxes and runs its
   // CCD over the constraint iterations' corrections only, not over the whole substep again. Contacts keep
   // the side their points had at the start of the substep (SideMesh::xo).
@@ -420,7 +420,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   bool early_next_ = false;  // proximity: wants_pass asked for the next pass
   BoundSettings bound_settings_;
   std::optional<DisplacementBounds<Exec>> bounds_;
-  View<Vec3*> x_pass_;  // cloth positions at the previous pass of the substep (ccd_per_pass)
+  View<Vec3*> x_pass_;  // cloth positions at the previous pass of the substep (CcdSpan::Pass)
   real epsilon_ = 0.1;
   int sweeps_ = 4;
   long ncontacts_ = 0;

@@ -1,6 +1,7 @@
 #include "core/scene.hpp"
 
 #include "core/error.hpp"
+#include "core/mesh_checks.hpp"
 #include "core/topology.hpp"
 
 #include <cstdio>
@@ -9,8 +10,8 @@
 namespace weft {
 namespace {
 
-[[noreturn]] void fail(const Scene& s, const std::string& what) {
-  throw InputError(s.name + ": " + what);
+[[noreturn]] void fail(const std::string& name, const std::string& what) {
+  throw InputError(name + ": " + what);
 }
 
 std::string vec_str(Vec3 v) {
@@ -19,12 +20,35 @@ std::string vec_str(Vec3 v) {
   return o.str();
 }
 
-void check_index(const Scene& s, long i, size_t n, const std::string& element) {
+void check_index(const std::string& name, long i, size_t n, const std::string& element) {
   if (i < 0 || size_t(i) >= n)
-    fail(s, element + " refers to point " + std::to_string(i) + ", out of range [0, " + std::to_string(n) + ")");
+    fail(name, element + " refers to point " + std::to_string(i) + ", out of range [0, " + std::to_string(n) + ")");
 }
 
+void check_position(const std::string& name, size_t i, Vec3 x) {
+  if (!isfinite_(x)) fail(name, "point " + std::to_string(i) + " has a non-finite position " + vec_str(x));
+}
+
+void check_triangles(const std::string& name, const std::vector<Vec3>& x, const std::vector<std::array<int, 3>>& tris) {
+  for (size_t t = 0; t < tris.size(); ++t) {
+    const auto& tri = tris[t];
+    for (int k = 0; k < 3; ++k) check_index(name, tri[k], x.size(), "triangle " + std::to_string(t));
+    if (triangle_area(x[tri[0]], x[tri[1]], x[tri[2]]) <= 0)
+      fail(name, "triangle " + std::to_string(t) + " (points " + std::to_string(tri[0]) + ", " + std::to_string(tri[1]) +
+                     ", " + std::to_string(tri[2]) + ") has zero area");
+  }
+}
+
+[[noreturn]] void fail(const Scene& s, const std::string& what) { fail(s.name, what); }
+
+void check_index(const Scene& s, long i, size_t n, const std::string& element) { check_index(s.name, i, n, element); }
+
 }  // namespace
+
+void validate_mesh(const std::string& name, const std::vector<Vec3>& x, const std::vector<std::array<int, 3>>& tris) {
+  for (size_t i = 0; i < x.size(); ++i) check_position(name, i, x[i]);
+  check_triangles(name, x, tris);
+}
 
 void validate_scene(const Scene& s) {
   const ClothPoints& p = s.points;
@@ -37,19 +61,13 @@ void validate_scene(const Scene& s) {
   same(p.friction.size(), "friction"); same(p.dynamic_friction.size(), "dynamicfriction");
   same(p.layer.size(), "layer"); same(p.stopped.size(), "stopped"); same(p.piece.size(), "piece");
   for (size_t i = 0; i < n; ++i) {
-    if (!isfinite_(p.position[i])) fail(s, "point " + std::to_string(i) + " has a non-finite position " + vec_str(p.position[i]));
+    check_position(s.name, i, p.position[i]);
     if (!isfinite_(p.velocity[i])) fail(s, "point " + std::to_string(i) + " has a non-finite velocity " + vec_str(p.velocity[i]));
     if (!isfinite_(p.mass[i]) || p.mass[i] < 0) fail(s, "point " + std::to_string(i) + " has an invalid mass " + std::to_string(p.mass[i]));
     if (!isfinite_(p.thickness[i]) || p.thickness[i] < 0)
       fail(s, "point " + std::to_string(i) + " has an invalid thickness " + std::to_string(p.thickness[i]));
   }
-  for (size_t t = 0; t < s.triangles.size(); ++t) {
-    const auto& tri = s.triangles[t];
-    for (int k = 0; k < 3; ++k) check_index(s, tri[k], n, "triangle " + std::to_string(t));
-    if (triangle_area(p.position[tri[0]], p.position[tri[1]], p.position[tri[2]]) <= 0)
-      fail(s, "triangle " + std::to_string(t) + " (points " + std::to_string(tri[0]) + ", " + std::to_string(tri[1]) +
-                  ", " + std::to_string(tri[2]) + ") has zero area");
-  }
+  check_triangles(s.name, p.position, s.triangles);
   const Constraints& c = s.constraints;
   for (size_t i = 0; i < c.distance.size(); ++i)
     for (int q : {c.distance[i].a, c.distance[i].b}) check_index(s, q, n, "distance constraint " + std::to_string(i));

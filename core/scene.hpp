@@ -22,6 +22,26 @@ inline std::optional<ContactModel> parse_contact_model(const std::string& s) {
   return std::nullopt;
 }
 
+// How the ccd model projects contacts (--contact-solver): Gauss-Seidel by colours, or Jacobi-style (each point
+// moves by the average of its contacts' corrections; the proximity model always averages).
+enum class ContactSolver { GaussSeidel = 0, Jacobi = 1 };
+inline const char* contact_solver_name(ContactSolver s) { return s == ContactSolver::Jacobi ? "jacobi" : "gauss-seidel"; }
+inline std::optional<ContactSolver> parse_contact_solver(const std::string& s) {
+  if (s == "gauss-seidel") return ContactSolver::GaussSeidel;
+  if (s == "jacobi") return ContactSolver::Jacobi;
+  return std::nullopt;
+}
+
+// The motion a collision pass of the ccd model tests (--ccd-span): the whole substep's, or, for a pass after
+// the first of its substep, only the motion since the previous pass.
+enum class CcdSpan { Substep = 0, Pass = 1 };
+inline const char* ccd_span_name(CcdSpan s) { return s == CcdSpan::Pass ? "pass" : "substep"; }
+inline std::optional<CcdSpan> parse_ccd_span(const std::string& s) {
+  if (s == "substep") return CcdSpan::Substep;
+  if (s == "pass") return CcdSpan::Pass;
+  return std::nullopt;
+}
+
 struct SolverSettings {
   real fps = 24;
   int frame_start = 1, frame_end = 48;  // inclusive; positions at frame_start are the scene's initial state
@@ -48,8 +68,8 @@ struct SolverSettings {
   int max_early_passes = 4;              // proximity: early passes per substep at most
   bool pair_refresh = true;              // proximity: a pass may keep the last full query's self pairs
   bool collision_failsafe = true;        // ccd model: move back points whose motion would cross cloth (collision/crossing_failsafe.hpp)
-  bool jacobi_contacts = false;          // contacts projected Jacobi-style (averaged) instead of by colours
-  bool ccd_per_pass = true;              // a later collision pass tests only the motion since the previous pass
+  ContactSolver contact_solver = ContactSolver::GaussSeidel;  // ccd model
+  CcdSpan ccd_span = CcdSpan::Pass;                           // ccd model
   bool profile = false;                  // time each stage (fences between stages)
 };
 

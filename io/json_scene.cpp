@@ -172,9 +172,9 @@ void read_settings(const Node& n, Scene& s) {
   if (n.has("impact_zone_smoothing")) st.impact_zone_smoothing = n["impact_zone_smoothing"].boolean();
   if (n.has("collision_failsafe")) st.collision_failsafe = n["collision_failsafe"].boolean();
   if (n.has("contact_solver")) {
-    const std::string v = n["contact_solver"].string();
-    if (v != "gauss-seidel" && v != "jacobi") n["contact_solver"].fail("expected \"gauss-seidel\" or \"jacobi\"");
-    st.jacobi_contacts = v == "jacobi";
+    const auto v = parse_contact_solver(n["contact_solver"].string());
+    if (!v) n["contact_solver"].fail("expected \"gauss-seidel\" or \"jacobi\"");
+    st.contact_solver = *v;
   }
   if (n.has("contact_model")) {
     const std::string v = n["contact_model"].string();
@@ -186,9 +186,9 @@ void read_settings(const Node& n, Scene& s) {
   st.max_early_passes = n.integer("max_early_passes", st.max_early_passes, 0);
   if (n.has("pair_refresh")) st.pair_refresh = n["pair_refresh"].boolean();
   if (n.has("ccd_span")) {
-    const std::string v = n["ccd_span"].string();
-    if (v != "substep" && v != "pass") n["ccd_span"].fail("expected \"substep\" or \"pass\"");
-    st.ccd_per_pass = v == "pass";
+    const auto v = parse_ccd_span(n["ccd_span"].string());
+    if (!v) n["ccd_span"].fail("expected \"substep\" or \"pass\"");
+    st.ccd_span = *v;
   }
   if (n.has("tethers")) {
     st.tether_stretch = n.number("tethers", st.tether_stretch, Range::NonNegative);

@@ -11,7 +11,7 @@ namespace {
 // A field added to these structs must be added to the file (and the format version raised): the sizes are
 // checked so that the scene file does not silently drop it (a field that fits in padding escapes the check).
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is stored as 3 doubles");
-static_assert(sizeof(SolverSettings) == 184, "SolverSettings changed: update the settings tables below");
+static_assert(sizeof(SolverSettings) == 192, "SolverSettings changed: update the settings tables below");
 static_assert(sizeof(XpbdMaterial) == 24 && sizeof(DistanceConstraint) == 40 && sizeof(BendConstraint) == 48 &&
                   sizeof(TriarapConstraint) == 88 && sizeof(PinConstraint) == 72 && sizeof(AttachConstraint) == 64 &&
                   sizeof(PtPrimConstraint) == 96 && sizeof(FemConstraint) == 88,
@@ -19,7 +19,8 @@ static_assert(sizeof(XpbdMaterial) == 24 && sizeof(DistanceConstraint) == 40 && 
 
 using Dims = std::vector<hsize_t>;
 
-// Every SolverSettings field, by type: one attribute each (bools as 0/1 integers, vectors as 3 doubles).
+// Every SolverSettings field, by type: one attribute each (bools as 0/1 integers, vectors as 3 doubles); the
+// enums are written by write_settings itself.
 const std::pair<const char*, real SolverSettings::*> kRealSettings[] = {
     {"fps", &SolverSettings::fps},
     {"velocity_damping", &SolverSettings::velocity_damping},
@@ -45,8 +46,6 @@ const std::pair<const char*, bool SolverSettings::*> kBoolSettings[] = {
     {"self_collision", &SolverSettings::self_collision},
     {"impact_zone_smoothing", &SolverSettings::impact_zone_smoothing},
     {"collision_failsafe", &SolverSettings::collision_failsafe},
-    {"jacobi_contacts", &SolverSettings::jacobi_contacts},
-    {"ccd_per_pass", &SolverSettings::ccd_per_pass},
     {"pair_refresh", &SolverSettings::pair_refresh},
     {"profile", &SolverSettings::profile},
 };
@@ -337,6 +336,9 @@ void write_settings(const h5::File& f, const std::string& group, const SolverSet
   for (const auto& [name, m] : kBoolSettings) h5::write_attribute(f, group, name, int(s.*m));
   for (const auto& [name, m] : kVecSettings) h5::write_vector_attribute(f, group, name, {(s.*m).x, (s.*m).y, (s.*m).z});
   h5::write_attribute(f, group, "contact_model", contact_model_name(s.contact_model));
+  // Two choices keep the 0/1 attributes they were first stored as (docs/formats.md).
+  h5::write_attribute(f, group, "jacobi_contacts", int(s.contact_solver == ContactSolver::Jacobi));
+  h5::write_attribute(f, group, "ccd_per_pass", int(s.ccd_span == CcdSpan::Pass));
 }
 
 SolverSettings read_settings(const h5::File& f, const std::string& group) {
@@ -360,11 +362,16 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
     if (!model) throw FormatError(f.path() + ": " + group + ": unknown contact_model '" + m + "' (proximity or ccd)");
     s.contact_model = *model;
   }
+  // Absent in files written before the Jacobi contact solver: Gauss-Seidel.
+  if (h5::has_attribute(f, group, "jacobi_contacts") && h5::read_attribute<int>(f, group, "jacobi_contacts") != 0)
+    s.contact_solver = ContactSolver::Jacobi;
+  // Absent in files written before the span existed, whose passes all tested the whole substep.
+  s.ccd_span = CcdSpan::Substep;
+  if (h5::has_attribute(f, group, "ccd_per_pass") && h5::read_attribute<int>(f, group, "ccd_per_pass") != 0)
+    s.ccd_span = CcdSpan::Pass;
   for (const auto& [name, m] : kBoolSettings) {
     // Added after the first files of this format version were written: absent means the default.
-    const bool optional = std::strcmp(name, "collision_failsafe") == 0 || std::strcmp(name, "jacobi_contacts") == 0;
-    // Absent in files written before it existed, whose passes all tested the whole substep.
-    if (std::strcmp(name, "ccd_per_pass") == 0 && !h5::has_attribute(f, group, name)) { s.*m = false; continue; }
+    const bool optional = std::strcmp(name, "collision_failsafe") == 0;
     // Absent in files written before it existed, whose passes all queried afresh.
     if (std::strcmp(name, "pair_refresh") == 0 && !h5::has_attribute(f, group, name)) { s.*m = false; continue; }
     if (optional && !h5::has_attribute(f, group, name)) continue;
@@ -387,6 +394,8 @@ std::vector<std::string> differing_settings(const SolverSettings& a, const Solve
   for (const auto& [name, m] : kBoolSettings)
     if (a.*m != b.*m) names.push_back(name);
   if (a.contact_model != b.contact_model) names.push_back("contact_model");
+  if (a.contact_solver != b.contact_solver) names.push_back("contact_solver");
+  if (a.ccd_span != b.ccd_span) names.push_back("ccd_span");
   for (const auto& [name, m] : kVecSettings)
     if (!same((a.*m).x, (b.*m).x) || !same((a.*m).y, (b.*m).y) || !same((a.*m).z, (b.*m).z)) names.push_back(name);
   return names;

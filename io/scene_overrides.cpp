@@ -118,9 +118,9 @@ const std::vector<Entry>& entries() {
       {"collision_failsafe", "on | off (ccd model)",
        [](Scene& s, const std::string& v) { s.settings.collision_failsafe = to_bool(v); }},
       {"contact_solver", "gauss-seidel | jacobi (ccd model)",
-       [](Scene& s, const std::string& v) { s.settings.jacobi_contacts = one_of(v, {"gauss-seidel", "jacobi"}) == "jacobi"; }},
+       [](Scene& s, const std::string& v) { s.settings.contact_solver = *parse_contact_solver(one_of(v, {"gauss-seidel", "jacobi"})); }},
       {"ccd_span", "substep | pass (ccd model)",
-       [](Scene& s, const std::string& v) { s.settings.ccd_per_pass = one_of(v, {"substep", "pass"}) == "pass"; }},
+       [](Scene& s, const std::string& v) { s.settings.ccd_span = *parse_ccd_span(one_of(v, {"substep", "pass"})); }},
       {"thickness", "number >= 0, m: every cloth point's collision thickness",
        [](Scene& s, const std::string& v) {
          const real t = to_real(v);

@@ -229,7 +229,7 @@ TEST(WEFT_TEST_SUITE, cli_contact_solver_switch_is_recorded_and_resumed) {
   const ScratchDir dir("cli_contact_solver");
   Cli weft(dir);
   expect_recorded_and_resumed(weft, dir, {"run builtin:layer-stack --res 4 --quiet --contact-model ccd",
-                                          "--contact-solver jacobi", "contact solver jacobi", "jacobi_contacts",
+                                          "--contact-solver jacobi", "contact solver jacobi", "contact_solver",
                                           "--contact-solver sor", "--contact-solver"});
 }
 
@@ -237,9 +237,9 @@ TEST(WEFT_TEST_SUITE, cli_ccd_span_switch_is_recorded_and_resumed) {
   WEFT_NEED_CLI();
   const ScratchDir dir("cli_ccd_span");
   Cli weft(dir);
-  const std::string span = SolverSettings{}.ccd_per_pass ? "substep" : "pass";  // not the default
+  const std::string span = SolverSettings{}.ccd_span == CcdSpan::Pass ? "substep" : "pass";  // not the default
   expect_recorded_and_resumed(weft, dir, {"run builtin:layer-stack --res 4 --quiet --contact-model ccd", "--ccd-span " + span,
-                                          "CCD span " + span, "ccd_per_pass", "--ccd-span frame", "--ccd-span"});
+                                          "CCD span " + span, "ccd_span", "--ccd-span frame", "--ccd-span"});
 }
 
 TEST(WEFT_TEST_SUITE, cli_tethers_switch_is_recorded_and_resumed) {

@@ -27,13 +27,10 @@ CcdResult host_ccd(CcdKind k, const Vec3* x, real ms, const CcdSettings& s = {})
                  : weft::ccd_edge_edge(x[0], x[1], x[2], x[3], x[4], x[5], x[6], x[7], ms, s);
 }
 
+// The batch on the device (collision/ccd_batch.hpp), one thread a query.
 template <class Exec>
 std::vector<CcdResult> device_ccd(CcdKind k, const std::vector<Vec3>& rows, real ms, const CcdSettings& s = {}) {
-  using Mem = typename Exec::memory_space;
-  auto d = weft::test::to_device<Exec>(rows, "rows");
-  Kokkos::View<CcdResult*, Mem> out("out", rows.size() / 8);
-  weft::ccd_batch(Exec(), k, Kokkos::View<const Vec3*, Mem>(d), ms, s, out);
-  return weft::test::to_host(out);
+  return weft::ccd_batch_on<Exec>(k, rows, ms, s);
 }
 
 // Queries whose device result differs from the host call in any bit.

@@ -123,14 +123,14 @@ TEST(WEFT_TEST_SUITE, proximity_fast_collider_never_jumps_past_the_cloth) {
   EXPECT_EQ(sim.intersections(), 0);
 }
 
-real settled_rms_speed(bool smoothing, bool jacobi = false, bool per_pass = true,
-                       weft::ContactModel model = weft::ContactModel::Ccd) {
+real settled_rms_speed(bool smoothing, weft::ContactSolver solver = weft::ContactSolver::GaussSeidel,
+                       weft::CcdSpan span = weft::CcdSpan::Pass, weft::ContactModel model = weft::ContactModel::Ccd) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::Scene s = weft::io::make_builtin_scene("layer-stack", {4});
   s.settings.contact_model = model;
   s.settings.impact_zone_smoothing = smoothing;
-  s.settings.jacobi_contacts = jacobi;
-  s.settings.ccd_per_pass = per_pass;
+  s.settings.contact_solver = solver;
+  s.settings.ccd_span = span;
   weft::SimulationOn<Exec> sim(s);
   weft::FrameStats fs;
   for (int f = 0; f < 24; ++f) {
@@ -150,7 +150,7 @@ TEST(WEFT_TEST_SUITE, layer_stack_settles_with_and_without_smoothing) {
 
 // The default, proximity contacts with displacement bounds, lands and settles the stack as well.
 TEST(WEFT_TEST_SUITE, layer_stack_settles_with_proximity_contacts) {
-  const real v = settled_rms_speed(true, true, true, weft::ContactModel::Proximity);
+  const real v = settled_rms_speed(true, weft::ContactSolver::Jacobi, weft::CcdSpan::Pass, weft::ContactModel::Proximity);
   std::printf("layer-stack rms speed after 1 s, proximity contacts: %.3e m/s\n", v);
   EXPECT_LT(v, 1e-3);
 }
@@ -158,15 +158,15 @@ TEST(WEFT_TEST_SUITE, layer_stack_settles_with_proximity_contacts) {
 // Contacts projected Jacobi-style: the stack also lands without a crossing and comes to rest (less calm
 // than with Gauss-Seidel: 2.6e-4 against 3.2e-5 m/s).
 TEST(WEFT_TEST_SUITE, layer_stack_settles_with_jacobi_contacts) {
-  const real jacobi = settled_rms_speed(true, true);
+  const real jacobi = settled_rms_speed(true, weft::ContactSolver::Jacobi);
   std::printf("layer-stack rms speed after 1 s, Jacobi contacts: %.3e m/s\n", jacobi);
   EXPECT_LT(jacobi, 1e-3);
 }
 
-// Collision passes whose CCD spans the whole substep (the span before ccd_per_pass) land and settle the
+// Collision passes whose CCD spans the whole substep (--ccd-span substep) land and settle the
 // stack as well.
 TEST(WEFT_TEST_SUITE, layer_stack_settles_with_substep_long_ccd) {
-  const real substep = settled_rms_speed(true, false, false);
+  const real substep = settled_rms_speed(true, weft::ContactSolver::GaussSeidel, weft::CcdSpan::Substep);
   std::printf("layer-stack rms speed after 1 s, CCD over the whole substep in every pass: %.3e m/s\n", substep);
   EXPECT_LT(substep, 1e-3);
 }
@@ -242,11 +242,11 @@ TEST(WEFT_TEST_SUITE, jacobi_contacts_hash_is_pinned) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::Scene s = weft::io::make_builtin_scene("layer-stack", {4});
   s.settings.contact_model = weft::ContactModel::Ccd;
-  s.settings.jacobi_contacts = true;
+  s.settings.contact_solver = weft::ContactSolver::Jacobi;
   uint64_t h = 0;
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "be259a0d72994ed1");
-  s.settings.ccd_per_pass = false;  // every pass's CCD over the whole substep
+  s.settings.ccd_span = weft::CcdSpan::Substep;  // every pass's CCD over the whole substep
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "745566c2d0d00b9d");
 }

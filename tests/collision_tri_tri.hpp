@@ -1,6 +1,8 @@
 // Discrete triangle-triangle intersection on hand-made cases, in every vertex order and on the device too;
 // and counting over meshes: flat and smooth sheets have none, sheets through themselves or each other have
-// exactly the brute-force pairs, on every backend.
+// exactly the brute-force pairs, on every backend; a mesh counted at changing positions (MeshIntersections)
+// as if counted afresh each time.
+#include "collision/mesh_intersections.hpp"
 #include "collision/tri_tri.hpp"
 
 #include <algorithm>
@@ -252,6 +254,25 @@ TEST(WEFT_TEST_SUITE, tri_tri_sheet_through_itself) {
                                  return u < 0.5 ? Vec3{u, v, 0} : Vec3{1 - u + 0.1 * (u - 0.5), v, 0.1 - 0.55 * (u - 0.5)};
                                }),
                           -1, "grid folded through itself");
+}
+
+// MeshIntersections keeps the triangles and the tree from call to call: flat, looped, flat again give the
+// counts of a fresh tree each time.
+TEST(WEFT_TEST_SUITE, tri_tri_mesh_counted_at_changing_positions) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  const Mesh flat = grid(41, 6, [](double u, double v) { return Vec3{u, v, 0}; });
+  const Mesh looped = grid(41, 6, [](double u, double v) {
+    const double t = -1.6 + 3.2 * u;
+    return Vec3{t * t - 1, v, t * t * t - t};
+  });
+  weft::MeshIntersections<Exec> mesh(flat.tris);
+  EXPECT_EQ(mesh.count(flat.x), 0);
+  weft::Lbvh<Exec> fresh;
+  const long loops = weft::count_intersections(fresh, weft::test::to_device<Exec>(looped.x),
+                                               triangles_to_device<Exec>(looped.tris));
+  EXPECT_GT(loops, 0);
+  EXPECT_EQ(mesh.count(looped.x), loops);
+  EXPECT_EQ(mesh.count(flat.x), 0);
 }
 
 TEST(WEFT_TEST_SUITE, tri_tri_two_meshes) {

@@ -62,8 +62,8 @@ Scene every_kind_scene() {
   st.impact_zone_smoothing = false;
   st.impact_zone_epsilon = 0.2;
   st.impact_zone_sweeps = 3;
-  st.jacobi_contacts = true;
-  st.ccd_per_pass = !SolverSettings{}.ccd_per_pass;
+  st.contact_solver = ContactSolver::Jacobi;
+  st.ccd_span = SolverSettings{}.ccd_span == CcdSpan::Pass ? CcdSpan::Substep : CcdSpan::Pass;
   st.tether_stretch = 1.25;
   st.profile = true;
   return s;
@@ -171,7 +171,7 @@ void expect_identical(const Scene& a, const Scene& b) {
               s.iterations == t.iterations && s.collision_passes == t.collision_passes &&
               s.smoothing_iterations == t.smoothing_iterations && s.impact_zone_sweeps == t.impact_zone_sweeps &&
               s.self_collision == t.self_collision && s.impact_zone_smoothing == t.impact_zone_smoothing &&
-              s.jacobi_contacts == t.jacobi_contacts && s.ccd_per_pass == t.ccd_per_pass && s.profile == t.profile);
+              s.contact_solver == t.contact_solver && s.ccd_span == t.ccd_span && s.profile == t.profile);
   EXPECT_TRUE(differing_settings(s, t).empty());
 }
 
@@ -212,6 +212,30 @@ TEST(WEFT_TEST_SUITE, hdf5_scene_round_trip_of_an_empty_animation_and_no_collide
   ASSERT_TRUE(s.pin_targets.empty() && s.colliders.empty());
   write_scene(s, dir.file("sheet.h5"));
   expect_identical(s, read_scene(dir.file("sheet.h5")));
+}
+
+// --contact-solver and --ccd-span are stored as the 0/1 attributes jacobi_contacts and ccd_per_pass; files
+// written before either existed lack them and read as Gauss-Seidel contacts over the whole substep.
+TEST(WEFT_TEST_SUITE, hdf5_scene_contact_solver_and_ccd_span_attributes) {
+  const ScratchDir dir("solver_span");
+  Scene s = make_builtin_scene("hanging-sheet", {3});
+  s.settings.contact_solver = ContactSolver::Jacobi;
+  s.settings.ccd_span = CcdSpan::Pass;
+  const std::string path = dir.file("sheet.h5");
+  write_scene(s, path);
+  {
+    const h5::File f = h5::File::open(path);
+    EXPECT_EQ(h5::read_attribute<int>(f, "/settings", "jacobi_contacts"), 1);
+    EXPECT_EQ(h5::read_attribute<int>(f, "/settings", "ccd_per_pass"), 1);
+  }
+  {
+    const Edit edit(path);
+    ASSERT_GE(H5Adelete_by_name(edit.file.get(), "/settings", "jacobi_contacts", H5P_DEFAULT), 0);
+    ASSERT_GE(H5Adelete_by_name(edit.file.get(), "/settings", "ccd_per_pass", H5P_DEFAULT), 0);
+  }
+  const SolverSettings older = read_scene(path).settings;
+  EXPECT_EQ(older.contact_solver, ContactSolver::GaussSeidel);
+  EXPECT_EQ(older.ccd_span, CcdSpan::Substep);
 }
 
 TEST(WEFT_TEST_SUITE, hdf5_scene_errors_name_the_file_and_the_dataset) {

@@ -105,8 +105,8 @@ TEST(WEFT_TEST_SUITE, io_json_scene_gives_the_expected_scene) {
   EXPECT_TRUE(st.wind == (Vec3{1, 0, 0}));
   EXPECT_EQ(st.velocity_damping, 0.5);
   EXPECT_FALSE(st.impact_zone_smoothing);
-  EXPECT_TRUE(st.jacobi_contacts);
-  EXPECT_FALSE(st.ccd_per_pass);
+  EXPECT_EQ(st.contact_solver, ContactSolver::Jacobi);
+  EXPECT_EQ(st.ccd_span, CcdSpan::Substep);
   EXPECT_EQ(st.tether_stretch, 1.1);
   EXPECT_EQ(st.contact_model, ContactModel::Ccd);
   EXPECT_EQ(st.early_pass_fraction, 0.05);

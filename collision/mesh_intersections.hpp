@@ -1,0 +1,42 @@
+// A mesh's intersecting triangle pairs (count_intersections, collision/tri_tri.hpp) at positions that change
+// from call to call, such as a simulation's frames or a cache's: the triangles go to the device once, and the
+// tree and its buffers are kept.
+#pragma once
+#include "collision/tri_tri.hpp"
+
+#include <array>
+#include <vector>
+
+namespace weft {
+
+template <class Exec>
+class MeshIntersections {
+ public:
+  using Mem = typename Exec::memory_space;
+
+  explicit MeshIntersections(const std::vector<std::array<int, 3>>& tris) : tris_("weft::mesh_tris", tris.size()) {
+    auto h = Kokkos::create_mirror_view(tris_);
+    for (size_t t = 0; t < tris.size(); ++t)
+      for (int k = 0; k < 3; ++k) h(t, k) = tris[t][k];
+    Kokkos::deep_copy(tris_, h);
+  }
+
+  // Positions on the device.
+  long count(Kokkos::View<const Vec3*, Mem> x) { return count_intersections(bvh_, x, Kokkos::View<const int* [3], Mem>(tris_)); }
+
+  // Positions on the host, copied into a device buffer kept from call to call.
+  long count(const std::vector<Vec3>& x) {
+    if (x_.extent(0) != x.size()) x_ = Kokkos::View<Vec3*, Mem>("weft::mesh_x", x.size());
+    auto h = Kokkos::create_mirror_view(x_);
+    for (size_t i = 0; i < x.size(); ++i) h(i) = x[i];
+    Kokkos::deep_copy(x_, h);
+    return count(Kokkos::View<const Vec3*, Mem>(x_));
+  }
+
+ private:
+  Lbvh<Exec> bvh_;
+  Kokkos::View<int* [3], Mem> tris_;
+  Kokkos::View<Vec3*, Mem> x_;
+};
+
+}  // namespace weft
