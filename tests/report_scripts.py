@@ -165,6 +165,22 @@ def peer_comparison(weft, tmp):
     check("| twist |" in (out / "results.md").read_text(), "newton_compare: the Markdown table has the twist")
 
 
+def stiff_cloth(weft, tmp):
+    out = tmp / "stiff"
+    run("stiff_cloth.py", "--weft", weft, "--out", out, "--res", 4, "--grid", "1x2,2x4", "--warmup", 1, "--frames", 1,
+        "--backend", "serial")
+    doc = json.loads((out / "stiff_cloth.json").read_text())
+    rows = {(r["material"], r["substeps"], r["iterations"]): r for r in doc["results"]}
+    check(set(rows) == {(m, s, i) for m in ("compliance-0", "stiff-x100") for s, i in ((1, 2), (2, 4))},
+          "stiff_cloth: one row per material and schedule")
+    check(all(r["status"] == "ok" and r["max_strain"] >= r["p99_strain"] >= 0 for r in rows.values()),
+          "stiff_cloth: every run finished with its strain")
+    # More sweeps a frame hold the infinitely stiff sheet closer to its rest lengths.
+    check(rows[("compliance-0", 2, 4)]["p99_strain"] <= rows[("compliance-0", 1, 2)]["p99_strain"],
+          "stiff_cloth: more substeps and iterations, less strain")
+    check("Target met by" in (out / "stiff_cloth.md").read_text(), "stiff_cloth: the verdict per material")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--weft", required=True, help="the weft binary (with the serial and openmp backends)")
@@ -180,7 +196,7 @@ def main():
         return 77
     weft = Path(a.weft).resolve()
     with tempfile.TemporaryDirectory(prefix="weft-reports-") as d:
-        for test in (cross_backend, error_vs_time, stability, scaling, peer_comparison):
+        for test in (cross_backend, error_vs_time, stability, stiff_cloth, scaling, peer_comparison):
             test(weft, Path(d))
             print(f"ok  {test.__name__}", flush=True)
     return 0
