@@ -49,6 +49,10 @@ struct SolverSettings {
   int iterations = 20;                   // Gauss-Seidel constraint iterations per substep
   int collision_passes = 2;              // per substep, spread evenly over the iterations
   int smoothing_iterations = 0;          // Jacobi passes after Gauss-Seidel (Vellum "smoothing iterations")
+  real chebyshev_rho = 0;                // 0: off; else Chebyshev acceleration of a substep's iterations with this
+                                         // estimate of their convergence rate (Wang 2015; docs/solver.md)
+  int chebyshev_delay = 4;               // iterations of a substep before the acceleration starts (>= 1)
+  int interleaved_jacobi = 0;            // Jacobi sweeps after every Gauss-Seidel sweep
   real tether_stretch = 0;               // 0: no tethers; else a point stays within this times its path length
                                          // at rest from the nearest hard-pinned point (constraints/tether.hpp)
   Vec3 gravity{0, -9.81, 0};             // m/s^2

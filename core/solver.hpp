@@ -176,7 +176,17 @@ class Solver {
     };
     for (int it = 0; it < I; ++it) {
       while (next_pass < P && (long(next_pass) * I) / P == it) collision_pass();
-      timed("weft::constraints", prof_.seconds_constraints, [&] { gauss_seidel_sweep(h); });
+      timed("weft::constraints", prof_.seconds_constraints, [&] {
+        const real omega = chebyshev_omega(it);
+        if (chebyshev_on() && it + 1 >= st_.chebyshev_delay)
+          Kokkos::parallel_for("weft::chebyshev_save", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
+                               kernels::ChebyshevSave<Mem>{state_.x, cheb_xk_, cheb_xkm1_});
+        gauss_seidel_sweep(h);
+        for (int j = 0; j < st_.interleaved_jacobi; ++j) jacobi_sweep(h);
+        if (omega != 1)
+          Kokkos::parallel_for("weft::chebyshev_blend", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
+                               kernels::ChebyshevBlend<Mem>{state_.x, cheb_xkm1_, state_.w, omega});
+      });
       if (!collision_) continue;
       timed("weft::contacts", prof_.seconds_contacts, [&] { collision_->project(state_, h); });
       // An early pass (proximity contacts, when many points were cut back), unless one is scheduled next.
@@ -194,6 +204,18 @@ class Solver {
     Kokkos::parallel_for("weft::velocity", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
                          kernels::UpdateVelocity<Mem>{state_.x, state_.x_start, state_.v, h});
     if (collision_) timed("weft::impact_zones", prof_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });
+  }
+
+  bool chebyshev_on() const { return st_.chebyshev_rho > 0; }
+
+  // The Chebyshev weight of iteration `it` of a substep: 1 before the delay S, then 2 / (2 - rho^2) at S and
+  // 4 / (4 - rho^2 omega) after (Wang 2015), computed on the host so that every backend blends by the same bits.
+  real chebyshev_omega(int it) const {
+    if (!chebyshev_on() || it < st_.chebyshev_delay) return 1;
+    const real r2 = st_.chebyshev_rho * st_.chebyshev_rho;
+    real omega = 2 / (2 - r2);
+    for (int k = st_.chebyshev_delay + 1; k <= it; ++k) omega = 4 / (4 - r2 * omega);
+    return omega;
   }
 
   // One Gauss-Seidel sweep, then the tethers, recorded once as a graph, so that on the device a sweep is one
@@ -345,6 +367,10 @@ class Solver {
     state_.w = upload(w, "weft::w");
     mass_ = upload(p.mass, "weft::mass");
     scratch_ = View<real*>("weft::scratch", n);
+    if (st_.chebyshev_rho > 0) {
+      cheb_xk_ = View<Vec3*>("weft::chebyshev_xk", n);
+      cheb_xkm1_ = View<Vec3*>("weft::chebyshev_xkm1", n);
+    }
     w_host_ = w;
   }
 
@@ -426,7 +452,7 @@ class Solver {
     row_scratch_ = View<real*>("weft::row_scratch", std::max(nr, tri_rest_.extent(0)));
     // Jacobi gather lists: for each point, the (row, slot) entries that move it, in colour order (the
     // order of the sum, so it is kept apart from the storage order).
-    if (st_.smoothing_iterations > 0) {
+    if (st_.smoothing_iterations > 0 || st_.interleaved_jacobi > 0) {
       std::vector<size_t> by_colour(nr);
       std::vector<long> colour_fill(size_t(nc) + 1, 0);
       for (size_t r = 0; r < nr; ++r) ++colour_fill[size_t(col.colour[r]) + 1];
@@ -487,6 +513,7 @@ class Solver {
   View<int*> kin_point_, kin_target_;
   std::vector<int> collider_offset_;
   View<Vec3*> row_delta_;
+  View<Vec3*> cheb_xk_, cheb_xkm1_;  // Chebyshev: the iterates at the start of this and of the last iteration
   View<long*> point_slot_offset_, point_slot_;
   std::unique_ptr<CollisionStage<Exec>> collision_;
   FrameStats prof_;  // stage times of the frame in progress

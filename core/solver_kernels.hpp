@@ -101,6 +101,28 @@ struct ProjectRows {
   }
 };
 
+// Chebyshev semi-iterative acceleration (Wang 2015) of a substep's iterations. Before a sweep: the iterate
+// before the last moves to xkm1, the current one to xk. After it: each moving point goes to
+// xkm1 + omega (x - xkm1), past the sweep's result along the last two iterations' direction.
+template <class Mem>
+struct ChebyshevSave {
+  Kokkos::View<Vec3*, Mem> x, xk, xkm1;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    xkm1(i) = xk(i);
+    xk(i) = x(i);
+  }
+};
+
+template <class Mem>
+struct ChebyshevBlend {
+  Kokkos::View<Vec3*, Mem> x, xkm1;
+  Kokkos::View<real*, Mem> w;
+  real omega;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    if (w(i) > 0) x(i) = xkm1(i) + omega * (x(i) - xkm1(i));
+  }
+};
+
 // Every tether at once: each moves only its own point, towards a point that does not move.
 template <class Mem>
 struct ProjectTethers {

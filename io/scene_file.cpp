@@ -11,7 +11,7 @@ namespace {
 // A field added to these structs must be added to the file (and the format version raised): the sizes are
 // checked so that the scene file does not silently drop it (a field that fits in padding escapes the check).
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is stored as 3 doubles");
-static_assert(sizeof(SolverSettings) == 192, "SolverSettings changed: update the settings tables below");
+static_assert(sizeof(SolverSettings) == 208, "SolverSettings changed: update the settings tables below");
 static_assert(sizeof(XpbdMaterial) == 24 && sizeof(DistanceConstraint) == 40 && sizeof(BendConstraint) == 48 &&
                   sizeof(TriarapConstraint) == 88 && sizeof(PinConstraint) == 72 && sizeof(AttachConstraint) == 64 &&
                   sizeof(PtPrimConstraint) == 96 && sizeof(FemConstraint) == 88,
@@ -31,6 +31,7 @@ const std::pair<const char*, real SolverSettings::*> kRealSettings[] = {
     {"impact_zone_epsilon", &SolverSettings::impact_zone_epsilon},
     {"tether_stretch", &SolverSettings::tether_stretch},
     {"early_pass_fraction", &SolverSettings::early_pass_fraction},
+    {"chebyshev_rho", &SolverSettings::chebyshev_rho},
 };
 const std::pair<const char*, int SolverSettings::*> kIntSettings[] = {
     {"frame_start", &SolverSettings::frame_start},
@@ -41,6 +42,8 @@ const std::pair<const char*, int SolverSettings::*> kIntSettings[] = {
     {"smoothing_iterations", &SolverSettings::smoothing_iterations},
     {"impact_zone_sweeps", &SolverSettings::impact_zone_sweeps},
     {"max_early_passes", &SolverSettings::max_early_passes},
+    {"chebyshev_delay", &SolverSettings::chebyshev_delay},
+    {"interleaved_jacobi", &SolverSettings::interleaved_jacobi},
 };
 const std::pair<const char*, bool SolverSettings::*> kBoolSettings[] = {
     {"self_collision", &SolverSettings::self_collision},
@@ -348,10 +351,14 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
     if (std::strcmp(name, "tether_stretch") == 0 && !h5::has_attribute(f, group, name)) continue;
     // Absent in files written before proximity contacts: they ran the ccd model, which has none.
     if (std::strcmp(name, "early_pass_fraction") == 0 && !h5::has_attribute(f, group, name)) continue;
+    // Absent in files written before the accelerations: none.
+    if (std::strcmp(name, "chebyshev_rho") == 0 && !h5::has_attribute(f, group, name)) continue;
     s.*m = h5::read_attribute<double>(f, group, name);
   }
   for (const auto& [name, m] : kIntSettings) {
     if (std::strcmp(name, "max_early_passes") == 0 && !h5::has_attribute(f, group, name)) continue;
+    const bool accel = std::strcmp(name, "chebyshev_delay") == 0 || std::strcmp(name, "interleaved_jacobi") == 0;
+    if (accel && !h5::has_attribute(f, group, name)) continue;
     s.*m = h5::read_attribute<int>(f, group, name);
   }
   // Files written before the proximity model ran the paper's.

@@ -4,7 +4,7 @@
 Runs weft's built-in `hanging-sheet` (at several sizes) and `twist` scenes in Newton (PyPI `newton` and
 `warp-lang`, optional: weft never needs them) and in weft (`weft run -o CACHE` for time, `weft
 check-intersections CACHE --all-frames` for the count), then writes results.json and results.md: scene, triangles, solver,
-ms/frame, intersections of the final frame, settings. Newton's final mesh is written as OBJ and counted by
+ms/frame, the triangle strain (max and 99th percentile) and the intersections of the final frame, settings. Newton's final mesh is written as OBJ and counted by
 `weft check-intersections mesh.obj`, so both sides are judged by the same discrete triangle-triangle test
 (adjacent triangles judged by their shared vertices).
 
@@ -73,6 +73,28 @@ DENSITY = 0.1
 FRICTION = 0.5
 DEFAULT_SIZES = [71, 224, 387]  # hanging-sheet res: 2 res^2 = 10,082 / 100,352 / 299,538 triangles
 TWIST_RES = 48
+
+
+def triangle_strains(x, rest, tris):
+    """Each triangle's largest principal stretch - 1 (0 when compressed) against its rest shape, as weft's
+    statistics measure it (constraints/triangle_strain.hpp): the same figure for both solvers' final mesh."""
+    r0, r1, r2 = (rest[tris[:, k]] for k in range(3))
+    e1, e2 = r1 - r0, r2 - r0
+    u = e1 / np.linalg.norm(e1, axis=1)[:, None]
+    n = np.cross(e1, e2)
+    v = np.cross(n / np.linalg.norm(n, axis=1)[:, None], u)
+    dm = np.stack([np.stack([(e1 * u).sum(1), (e2 * u).sum(1)], 1), np.stack([(e1 * v).sum(1), (e2 * v).sum(1)], 1)], 1)
+    ds = np.stack([x[tris[:, 1]] - x[tris[:, 0]], x[tris[:, 2]] - x[tris[:, 0]]], 2)  # T x 3 x 2
+    f = ds @ np.linalg.inv(dm)
+    c = np.transpose(f, (0, 2, 1)) @ f
+    a, b, d = c[:, 0, 0], c[:, 0, 1], c[:, 1, 1]
+    top = (a + d) / 2 + np.sqrt(((a - d) / 2) ** 2 + b * b)
+    return np.maximum(np.sqrt(top) - 1, 0)
+
+
+def strain_figures(x, rest, tris):
+    e = triangle_strains(np.asarray(x, dtype=np.float64), np.asarray(rest, dtype=np.float64), np.asarray(tris))
+    return {"max_strain": float(e.max()), "p99_strain": float(np.quantile(e, 0.99, method="nearest"))}
 
 
 def grid(res, origin, du, dv):
@@ -229,7 +251,7 @@ def run_newton(scene, frames, device, iterations, self_contact, tri_ke, out_dir)
         "ms_per_frame": 1e3 * sum(timed) / len(timed), "frames_timed": len(timed), "first_frame_s": times[0],
         "setup_and_first_frame_s": setup_s, "cuda_graph": graph is not None, "finite": bool(np.isfinite(x).all()),
         "lowest_y": float(x[:, 1].min()), "pin_error": float(np.abs(x[scene.held] - scene.targets(frames)).max()),
-        "obj": obj, "settings": settings,
+        "obj": obj, "settings": settings, **strain_figures(x, scene.x, scene.tris),
     }
 
 
@@ -259,14 +281,17 @@ def run_weft(args, scene, frames, self_collision, out_dir):
     cache = os.path.join(out_dir, "weft_%s_%d_self-%s.h5" % (scene.name, scene.res, on))
     out = sh(weft_cmd(args, "run", "builtin:" + scene.name, "--res", scene.res, "--frames", "1-%d" % (1 + frames),
                       "--self-collision", on, *(["--contact-solver", args.contact_solver] if args.contact_solver else []),
-                      "-o", cache))
+                      *args.weft_arg, "-o", cache))
     ms = [float(v) for v in re.findall(r"^frame \d+ .* ([0-9.]+) ms$", out, re.M)]
     head = re.search(r"^\S+: \d+ points, (\d+) triangles", out, re.M)
     timed = ms[1:] if len(ms) > 1 else ms
     chk = sh(weft_cmd(args, "check-intersections", cache, "--all-frames"))
     per_frame = [int(v) for v in re.findall(r"^frame \d+ .*intersections (\d+)$", chk, re.M)]
     settings = sh(weft_cmd(args, "info", cache))
-    return {
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reports"))
+    import weftlib  # noqa: E402 - the cache reader of the report scripts
+    final = weftlib.read_cache(cache)["positions"][-1]
+    return {**strain_figures(final, scene.x, scene.tris), "weft_args": list(args.weft_arg),
         "ms_per_frame": sum(timed) / len(timed) if timed else None, "frames_timed": len(timed),
         "intersections": per_frame[-1] if per_frame else last_count(chk),
         "max_intersections_any_frame": max(per_frame) if per_frame else None,
@@ -284,7 +309,8 @@ def count_obj(args, obj):
 
 # ------------------------------------------------------------------------------------------------------ main
 def table(rows):
-    head = "| scene | triangles | solver | ms/frame | frames timed | intersections (final) | settings |\n|---|---:|---|---:|---:|---:|---|\n"
+    head = ("| scene | triangles | solver | ms/frame | max / p99 strain (final) | frames timed | intersections (final) | settings |\n"
+            "|---|---:|---|---:|---|---:|---:|---|\n")
     body = ""
     for r in rows:
         st = r["settings"]
@@ -296,9 +322,11 @@ def table(rows):
         else:
             brief += ", %d collision passes, self collision %s" % (st["collision_passes"], "on" if st["self_collision"] else "off")
             brief += ", max intersections over frames %s" % r["max_intersections_any_frame"]
+            brief += "".join(" " + a for a in r.get("weft_args", []))
         inter = "-" if r["intersections"] is None else str(r["intersections"])
-        body += "| %s | %d | %s | %.2f | %d | %s | %s |\n" % (r["scene"], r["triangles"], r["solver"], r["ms_per_frame"],
-                                                             r["frames_timed"], inter, brief)
+        body += "| %s | %d | %s | %.2f | %.3g / %.3g | %d | %s | %s |\n" % (
+            r["scene"], r["triangles"], r["solver"], r["ms_per_frame"], r["max_strain"], r["p99_strain"],
+            r["frames_timed"], inter, brief)
     return head + body
 
 
@@ -321,6 +349,8 @@ def main():
     ap.add_argument("--quick", action="store_true", help="CPU smoke test: hanging res 10, twist res 10, 4 frames")
     ap.add_argument("--contact-solver", choices=["gauss-seidel", "jacobi"], default=None,
                     help="weft --contact-solver (default: the scene's, Gauss-Seidel)")
+    ap.add_argument("--weft-arg", action="append", default=[], metavar="ARG",
+                    help="an extra argument for weft run, repeated for each (e.g. --weft-arg=--tethers --weft-arg=1)")
     ap.add_argument("--skip-newton", action="store_true")
     ap.add_argument("--skip-weft", action="store_true", help="run only Newton (--weft still counts its intersections)")
     ap.add_argument("--out", default="peer-results", help="folder for results.json and results.md")

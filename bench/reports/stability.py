@@ -181,7 +181,7 @@ def run_case(case, ctx, a):
     if cache.exists():
         cache.unlink()
     args = ["run", scene] + (["--res", res] if res and scene.startswith("builtin:") else []) + case["args"] + \
-        (["--contact-solver", a.contact_solver] if a.contact_solver else []) + ["-o", cache]
+        (["--contact-solver", a.contact_solver] if a.contact_solver else []) + ["--set=" + v for v in a.set] + ["-o", cache]
     r = W.run_weft(ctx["weft"], args, backend=a.backend, threads=a.threads, timeout=ctx["timeout"],
                    diverge_strain=a.diverge_strain, log=ctx["log"])
     c = W.read_cache(cache)
@@ -273,6 +273,8 @@ def main():
                     help="kill a run whose max strain passes this (default %(default)s): the case fails")
     ap.add_argument("--intersection-frames", type=int, default=8, help="frames checked for intersections (default 8)")
     ap.add_argument("--contact-solver", choices=["gauss-seidel", "jacobi"], help="weft --contact-solver for every case")
+    ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                    help="a solver setting for every case (weft --set), repeated for each")
     ap.add_argument("--keep-caches", action="store_true", help="keep each case's cache in OUT")
     ap.add_argument("--strict", action="store_true", help="exit 1 when a case fails")
     a = ap.parse_args()
