@@ -2,10 +2,10 @@
 // (docs/performance.md). Reports numbers; asserts nothing.
 #include "apps/cli.hpp"
 #include "backends/simulation.hpp"
-#include "core/schedules.hpp"
 #include "io/scene_overrides.hpp"
 #include "io/scene_source.hpp"
 #include "io/trimesh.hpp"
+#include "scene/schedules.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -41,7 +41,7 @@ struct Result {
 // Each schedule runs twice over the same frames (the bits do not depend on profiling): once as a user's run
 // does, for the time per frame and the memory, and once with every stage fenced, for the stage times. A
 // fence after each stage keeps the host from queueing the next launches while the device works, so the
-// fenced frame is slower than the real one. `schedule` names a row of core/schedules.hpp, or is "scene": the
+// fenced frame is slower than the real one. `schedule` names a row of scene/schedules.hpp, or is "scene": the
 // scene's own settings.
 Result bench_one(Backend b, Scene scene, const Options& o, const std::string& schedule) {
   SolverSettings& st = scene.settings;

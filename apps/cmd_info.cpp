@@ -1,12 +1,12 @@
-// `weft info`: versions, backends, devices and the named schedules (core/schedules.hpp); `weft info FILE`:
+// `weft info`: versions, backends, devices and the named schedules (scene/schedules.hpp); `weft info FILE`:
 // what a scene or cache file holds.
 #include "apps/cli.hpp"
 #include "core/hash.hpp"
 #include "core/kokkos_compat.hpp"
-#include "core/schedules.hpp"
 #include "io/cache_file.hpp"
 #include "io/hdf5_util.hpp"
 #include "io/scene_file.hpp"
+#include "scene/schedules.hpp"
 #include "weft_version.hpp"
 
 #include <iostream>

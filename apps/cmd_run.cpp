@@ -5,12 +5,12 @@
 #include "backends/body_cleaning.hpp"
 #include "backends/simulation.hpp"
 #include "core/hash.hpp"
-#include "core/schedules.hpp"
 #include "io/cache_file.hpp"
 #include "io/geo_writeback.hpp"
 #include "io/scene_file.hpp"
 #include "io/scene_overrides.hpp"
 #include "io/scene_source.hpp"
+#include "scene/schedules.hpp"
 
 #include <unistd.h>
 

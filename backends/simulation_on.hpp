@@ -3,7 +3,7 @@
 #include "backends/simulation.hpp"
 #include "collision/collision_handler.hpp"
 #include "collision/mesh_intersections.hpp"
-#include "core/solver.hpp"
+#include "solver/solver.hpp"
 
 #include <algorithm>
 

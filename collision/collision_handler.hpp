@@ -17,9 +17,9 @@
 #include "collision/lbvh.hpp"
 #include "collision/narrow_pipeline.hpp"
 #include "collision/representative.hpp"
-#include "core/scene.hpp"
 #include "core/solver_state.hpp"
 #include "core/stage_timer.hpp"
+#include "scene/scene.hpp"
 
 #include <map>
 #include <optional>

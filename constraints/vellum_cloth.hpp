@@ -2,7 +2,7 @@
 // area density, thickness, friction and layer; edges get distance constraints (or triangles get triangle
 // stretch, or the FEM membrane), interior edges get bend constraints; rest values from the current shape.
 #pragma once
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <array>
 #include <vector>

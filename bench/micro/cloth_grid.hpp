@@ -2,8 +2,8 @@
 // rest of weft_io would bring HDF5 and Cairo).
 #pragma once
 #include "constraints/vellum_cloth.hpp"
-#include "core/scene.hpp"
 #include "io/procedural.hpp"
+#include "scene/scene.hpp"
 
 #include <algorithm>
 #include <cmath>

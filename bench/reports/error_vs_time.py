@@ -56,7 +56,7 @@ FAMILY_TITLES = {
 def schedules(families, chosen, named):
     """(family, label, substeps, iterations, passes, weft arguments) for every schedule of the grid. The
     `tethers` family is `iterations` with `--tethers 1` (docs/solver.md, Tethers); the `paper` family is every
-    schedule in `named`, {name: (substeps, iterations, passes)} as `weft info` gives them (core/schedules.hpp)."""
+    schedule in `named`, {name: (substeps, iterations, passes)} as `weft info` gives them (scene/schedules.hpp)."""
     out = []
     for fam in chosen:
         for v in (named if fam == "paper" else families.get(fam, [])):
@@ -154,7 +154,7 @@ def main():
     else:
         checkpoints = sorted({first + max(1, round(nframes * q)) for q in (0.25, 0.5, 0.75, 1.0)})
     if "paper" in a.families.split(",") and not info["schedules"]:
-        sys.exit(f"error: `{weft} info` names no schedules (a weft older than core/schedules.hpp?)")
+        sys.exit(f"error: `{weft} info` names no schedules (a weft older than scene/schedules.hpp?)")
     grid = schedules(preset["families"], a.families.split(","), info["schedules"])
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)

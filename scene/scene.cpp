@@ -1,8 +1,8 @@
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include "core/error.hpp"
-#include "core/mesh_checks.hpp"
 #include "core/topology.hpp"
+#include "scene/mesh_checks.hpp"
 
 #include <cstdio>
 #include <sstream>

@@ -2,8 +2,8 @@
 // semantics, animated targets and colliders, solver settings. Built by scene generators and readers,
 // validated by validate_scene(), then uploaded once to the device by the solver.
 #pragma once
-#include "constraints/xpbd.hpp"
 #include "core/vec.hpp"
+#include "scene/material.hpp"
 
 #include <array>
 #include <optional>

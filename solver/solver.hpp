@@ -8,14 +8,14 @@
 #include "constraints/triangle_strain.hpp"
 #include "core/colouring.hpp"
 #include "core/error.hpp"
-#include "core/frame_stats.hpp"
 #include "core/hash.hpp"
 #include "core/kokkos_compat.hpp"
 #include "core/reduce.hpp"
-#include "core/scene.hpp"
-#include "core/solver_kernels.hpp"
 #include "core/solver_state.hpp"
 #include "core/stage_timer.hpp"
+#include "scene/scene.hpp"
+#include "solver/frame_stats.hpp"
+#include "solver/solver_kernels.hpp"
 
 #include <Kokkos_Core.hpp>
 #include <algorithm>
