@@ -101,11 +101,11 @@ int bench(const GlobalOptions& g, const Options& o) {
   std::vector<io::SceneOverride> overrides;
   for (const std::string& kv : o.set) overrides.push_back(io::parse_override(kv));
   io::apply_overrides(scene, overrides);
-  apply_self_collision(o.self_collision, scene.settings.self_collision);
-  apply_contact_model(o.contact_model, scene.settings.contact_model);
-  apply_pair_refresh(o.pair_refresh, scene.settings.pair_refresh);
-  apply_contact_solver(o.contact_solver, scene.settings.contact_solver);
-  apply_ccd_span(o.ccd_span, scene.settings.ccd_span);
+  apply_self_collision(o.self_collision, scene.settings.collision.self_collision);
+  apply_contact_model(o.contact_model, scene.settings.collision.contact_model);
+  apply_pair_refresh(o.pair_refresh, scene.settings.collision.pair_refresh);
+  apply_contact_solver(o.contact_solver, scene.settings.collision.contact_solver);
+  apply_ccd_span(o.ccd_span, scene.settings.collision.ccd_span);
   apply_tethers(o.tethers, scene.settings.tether_stretch);
   warn_about_thickness(scene);
   Options opt = o;
@@ -118,10 +118,11 @@ int bench(const GlobalOptions& g, const Options& o) {
   } else {
     throw Error("--schedules is 'paper' or 'current'", 2);
   }
-  const bool proximity = scene.settings.contact_model == ContactModel::Proximity;
-  const char* model = contact_model_name(scene.settings.contact_model);
-  const char* contacts = contact_solver_name(proximity ? ContactSolver::Jacobi : scene.settings.contact_solver);
-  const char* span = ccd_span_name(scene.settings.ccd_span);
+  const bool proximity = scene.settings.collision.contact_model == ContactModel::Proximity;
+  const char* model = contact_model_name(scene.settings.collision.contact_model);
+  const char* contacts =
+      contact_solver_name(proximity ? ContactSolver::Jacobi : scene.settings.collision.contact_solver);
+  const char* span = ccd_span_name(scene.settings.collision.ccd_span);
   const real tethers = scene.settings.tether_stretch;
   std::printf("%s: %zu points, %zu triangles, backend %s, contact model %s, %s contacts%s%s, tethers %g, %d frames "
               "after %d warm-up (ms/frame unfenced; the stages from a second, fenced run)\n",

@@ -169,26 +169,27 @@ void read_settings(const Node& n, Scene& s) {
   st.gravity = n.vec3("gravity", st.gravity);
   st.wind = n.vec3("wind", st.wind);
   st.velocity_damping = n.number("damping", st.velocity_damping, Range::NonNegative);
-  if (n.has("impact_zone_smoothing")) st.impact_zone_smoothing = n["impact_zone_smoothing"].boolean();
-  if (n.has("collision_failsafe")) st.collision_failsafe = n["collision_failsafe"].boolean();
+  if (n.has("impact_zone_smoothing")) st.collision.impact_zone_smoothing = n["impact_zone_smoothing"].boolean();
+  if (n.has("collision_failsafe")) st.collision.collision_failsafe = n["collision_failsafe"].boolean();
   if (n.has("contact_solver")) {
     const auto v = parse_contact_solver(n["contact_solver"].string());
     if (!v) n["contact_solver"].fail("expected \"gauss-seidel\" or \"jacobi\"");
-    st.contact_solver = *v;
+    st.collision.contact_solver = *v;
   }
   if (n.has("contact_model")) {
     const std::string v = n["contact_model"].string();
     const auto m = parse_contact_model(v);
     if (!m) n["contact_model"].fail("expected \"proximity\" or \"ccd\"");
-    st.contact_model = *m;
+    st.collision.contact_model = *m;
   }
-  st.early_pass_fraction = n.number("early_pass_fraction", st.early_pass_fraction, Range::NonNegative);
-  st.max_early_passes = n.integer("max_early_passes", st.max_early_passes, 0);
-  if (n.has("pair_refresh")) st.pair_refresh = n["pair_refresh"].boolean();
+  st.collision.early_pass_fraction =
+      n.number("early_pass_fraction", st.collision.early_pass_fraction, Range::NonNegative);
+  st.collision.max_early_passes = n.integer("max_early_passes", st.collision.max_early_passes, 0);
+  if (n.has("pair_refresh")) st.collision.pair_refresh = n["pair_refresh"].boolean();
   if (n.has("ccd_span")) {
     const auto v = parse_ccd_span(n["ccd_span"].string());
     if (!v) n["ccd_span"].fail("expected \"substep\" or \"pass\"");
-    st.ccd_span = *v;
+    st.collision.ccd_span = *v;
   }
   if (n.has("tethers")) {
     st.tether_stretch = n.number("tethers", st.tether_stretch, Range::NonNegative);

@@ -135,7 +135,7 @@ void validate_scene(const Scene& s) {
 
 std::vector<std::string> thickness_warnings(const Scene& s) {
   std::vector<std::string> out;
-  if (!s.settings.self_collision) return out;
+  if (!s.settings.collision.self_collision) return out;
   struct Worst { long tri = -1, count = 0; real ratio = 0, height = 0, thickness = 0; };
   std::vector<Worst> worst;
   for (size_t t = 0; t < s.triangles.size(); ++t) {

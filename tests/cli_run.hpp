@@ -237,7 +237,7 @@ TEST(WEFT_TEST_SUITE, cli_ccd_span_switch_is_recorded_and_resumed) {
   WEFT_NEED_CLI();
   const ScratchDir dir("cli_ccd_span");
   Cli weft(dir);
-  const std::string span = SolverSettings{}.ccd_span == CcdSpan::Pass ? "substep" : "pass";  // not the default
+  const std::string span = CollisionSettings{}.ccd_span == CcdSpan::Pass ? "substep" : "pass";  // not the default
   expect_recorded_and_resumed(weft, dir, {"run builtin:layer-stack --res 4 --quiet --contact-model ccd", "--ccd-span " + span,
                                           "CCD span " + span, "ccd_span", "--ccd-span frame", "--ccd-span"});
 }

@@ -30,7 +30,7 @@ inline Scene hanging_sheet(long triangles) {
   add_cloth_piece(s, g.x, g.tris, ClothMaterial{});
   s.points.stopped[0] = 1;
   s.points.stopped[res] = 1;
-  s.settings.self_collision = false;
+  s.settings.collision.self_collision = false;
   return s;
 }
 
