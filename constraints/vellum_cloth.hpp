@@ -9,7 +9,8 @@
 
 namespace weft {
 
-enum class StretchModel { Distance, Triarap, TriarapNormalized, Fem };
+// The material's "stretch" (docs/scene-json.md): distance, triarap, triarapnorm or fem, as Vellum names them.
+enum class StretchModel { Distance, Triarap, TriarapNorm, Fem };
 
 struct ClothMaterial {
   real density = 0.1;             // kg/m^2

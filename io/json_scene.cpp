@@ -213,7 +213,7 @@ ClothMaterial read_material(const Node& n) {
     else if (model == "triarap")
       m.stretch = StretchModel::Triarap;
     else if (model == "triarapnorm")
-      m.stretch = StretchModel::TriarapNormalized;
+      m.stretch = StretchModel::TriarapNorm;
     else if (model == "fem")
       m.stretch = StretchModel::Fem;
     else

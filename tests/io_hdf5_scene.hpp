@@ -23,7 +23,7 @@ using weft::test::ScratchDir;
 // constraint kind, a second collider and non-default settings.
 Scene every_kind_scene() {
   Scene s = make_builtin_scene("skirt", {3});
-  for (StretchModel model : {StretchModel::Triarap, StretchModel::TriarapNormalized, StretchModel::Fem}) {
+  for (StretchModel model : {StretchModel::Triarap, StretchModel::TriarapNorm, StretchModel::Fem}) {
     ClothMaterial mat;
     mat.stretch = model;
     mat.layer = 7;

@@ -70,7 +70,7 @@ Scene expected_scene() {
   add_cloth_piece(s, {{0, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}}, {{0, 1, 2}, {0, 2, 3}}, flag);
   s.points.stopped[0] = s.points.stopped[3] = 1;
   ClothMaterial sheet;
-  sheet.stretch = StretchModel::TriarapNormalized;
+  sheet.stretch = StretchModel::TriarapNorm;
   sheet.stretch_stiffness = 1e4;
   sheet.compress_stiffness = 100;
   sheet.stretch_damping = 0.01;
