@@ -1,7 +1,7 @@
 // The weft command line: global options, and subcommands that register themselves (apps/cmd_*.cpp).
 #pragma once
 #include "backends/backend.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <CLI/CLI.hpp>
 #include <functional>
@@ -44,7 +44,7 @@ void add_tethers_option(CLI::App* cmd, std::string& value);
 void apply_tethers(const std::string& value, real& tether_stretch);
 
 // Prints `weft: warning: SCENE: ...` on stderr for each cloth piece too thick for its triangles
-// (thickness_warnings, core/scene.hpp); the run goes on.
+// (thickness_warnings, scene/scene.hpp); the run goes on.
 void warn_about_thickness(const Scene& s);
 
 // The work a subcommand does once parsing is done; returns the exit code.

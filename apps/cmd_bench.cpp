@@ -2,10 +2,10 @@
 // (docs/performance.md). Reports numbers; asserts nothing.
 #include "apps/cli.hpp"
 #include "backends/simulation.hpp"
-#include "core/schedules.hpp"
 #include "io/scene_overrides.hpp"
 #include "io/scene_source.hpp"
 #include "io/trimesh.hpp"
+#include "scene/schedules.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -41,7 +41,7 @@ struct Result {
 // Each schedule runs twice over the same frames (the bits do not depend on profiling): once as a user's run
 // does, for the time per frame and the memory, and once with every stage fenced, for the stage times. A
 // fence after each stage keeps the host from queueing the next launches while the device works, so the
-// fenced frame is slower than the real one. `schedule` names a row of core/schedules.hpp, or is "scene": the
+// fenced frame is slower than the real one. `schedule` names a row of scene/schedules.hpp, or is "scene": the
 // scene's own settings.
 Result bench_one(Backend b, Scene scene, const Options& o, const std::string& schedule) {
   SolverSettings& st = scene.settings;
@@ -101,11 +101,11 @@ int bench(const GlobalOptions& g, const Options& o) {
   std::vector<io::SceneOverride> overrides;
   for (const std::string& kv : o.set) overrides.push_back(io::parse_override(kv));
   io::apply_overrides(scene, overrides);
-  apply_self_collision(o.self_collision, scene.settings.self_collision);
-  apply_contact_model(o.contact_model, scene.settings.contact_model);
-  apply_pair_refresh(o.pair_refresh, scene.settings.pair_refresh);
-  apply_contact_solver(o.contact_solver, scene.settings.contact_solver);
-  apply_ccd_span(o.ccd_span, scene.settings.ccd_span);
+  apply_self_collision(o.self_collision, scene.settings.collision.self_collision);
+  apply_contact_model(o.contact_model, scene.settings.collision.contact_model);
+  apply_pair_refresh(o.pair_refresh, scene.settings.collision.pair_refresh);
+  apply_contact_solver(o.contact_solver, scene.settings.collision.contact_solver);
+  apply_ccd_span(o.ccd_span, scene.settings.collision.ccd_span);
   apply_tethers(o.tethers, scene.settings.tether_stretch);
   warn_about_thickness(scene);
   Options opt = o;
@@ -118,10 +118,11 @@ int bench(const GlobalOptions& g, const Options& o) {
   } else {
     throw Error("--schedules is 'paper' or 'current'", 2);
   }
-  const bool proximity = scene.settings.contact_model == ContactModel::Proximity;
-  const char* model = contact_model_name(scene.settings.contact_model);
-  const char* contacts = contact_solver_name(proximity ? ContactSolver::Jacobi : scene.settings.contact_solver);
-  const char* span = ccd_span_name(scene.settings.ccd_span);
+  const bool proximity = scene.settings.collision.contact_model == ContactModel::Proximity;
+  const char* model = contact_model_name(scene.settings.collision.contact_model);
+  const char* contacts =
+      contact_solver_name(proximity ? ContactSolver::Jacobi : scene.settings.collision.contact_solver);
+  const char* span = ccd_span_name(scene.settings.collision.ccd_span);
   const real tethers = scene.settings.tether_stretch;
   std::printf("%s: %zu points, %zu triangles, backend %s, contact model %s, %s contacts%s%s, tethers %g, %d frames "
               "after %d warm-up (ms/frame unfenced; the stages from a second, fenced run)\n",

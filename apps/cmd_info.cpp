@@ -1,12 +1,12 @@
-// `weft info`: versions, backends, devices and the named schedules (core/schedules.hpp); `weft info FILE`:
+// `weft info`: versions, backends, devices and the named schedules (scene/schedules.hpp); `weft info FILE`:
 // what a scene or cache file holds.
 #include "apps/cli.hpp"
 #include "core/hash.hpp"
 #include "core/kokkos_compat.hpp"
-#include "core/schedules.hpp"
 #include "io/cache_file.hpp"
 #include "io/hdf5_util.hpp"
 #include "io/scene_file.hpp"
+#include "scene/schedules.hpp"
 #include "weft_version.hpp"
 
 #include <iostream>
@@ -23,26 +23,32 @@ std::string vec_string(Vec3 v) {
 }
 
 void print_settings(const SolverSettings& s) {
+  const CollisionSettings& c = s.collision;
   std::ostringstream tethers;
   if (s.tether_stretch > 0) tethers << s.tether_stretch;
   else tethers << "off";
   std::cout << "settings: frames " << s.frame_start << "-" << s.frame_end << " at " << s.fps << " fps, substeps "
             << s.substeps << ", iterations " << s.iterations << ", collision passes " << s.collision_passes
-            << ", smoothing iterations " << s.smoothing_iterations << "\n"
+            << ", smoothing iterations " << s.smoothing_iterations << ", Chebyshev "
+            << (s.chebyshev_rho > 0 ? "rate " + std::to_string(s.chebyshev_rho).substr(0, 4) + " after " +
+                                          std::to_string(s.chebyshev_delay) + " iterations"
+                                    : std::string("off"))
+            << "\n"
             << "  gravity " << vec_string(s.gravity) << ", wind " << vec_string(s.wind) << ", velocity damping "
             << s.velocity_damping << "\n"
-            << "  self collision " << (s.self_collision ? "on" : "off") << ", friction static " << s.static_friction
-            << " dynamic " << s.dynamic_friction << ", layer shock " << s.layer_shock << ", parallel edges "
-            << s.parallel_edge_degrees << " degrees\n"
-            << "  contact model " << contact_model_name(s.contact_model);
-  if (s.contact_model == ContactModel::Proximity)
-    std::cout << " (early passes at " << s.early_pass_fraction << " of the points cut back, at most "
-              << s.max_early_passes << " a substep; pair refresh " << (s.pair_refresh ? "on" : "off") << ")";
+            << "  self collision " << (c.self_collision ? "on" : "off") << ", friction static " << c.static_friction
+            << " dynamic " << c.dynamic_friction << ", layer shock " << c.layer_shock << ", parallel edges "
+            << c.parallel_edge_degrees << " degrees\n"
+            << "  contact model " << contact_model_name(c.contact_model);
+  if (c.contact_model == ContactModel::Proximity)
+    std::cout << " (early passes at " << c.early_pass_fraction << " of the points cut back, at most "
+              << c.max_early_passes << " a substep; pair refresh " << (c.pair_refresh ? "on" : "off") << ")";
   std::cout << "\n"
-            << "  impact zone smoothing " << (s.impact_zone_smoothing ? "on" : "off") << " (epsilon "
-            << s.impact_zone_epsilon << ", " << s.impact_zone_sweeps << " sweeps), crossing fail-safe "
-            << (s.collision_failsafe ? "on" : "off") << ", contact solver "
-            << contact_solver_name(s.contact_solver) << ", CCD span " << ccd_span_name(s.ccd_span) << ", tethers " << tethers.str() << "\n";
+            << "  impact zone smoothing " << (c.impact_zone_smoothing ? "on" : "off") << " (epsilon "
+            << c.impact_zone_epsilon << ", " << c.impact_zone_sweeps << " sweeps), crossing fail-safe "
+            << (c.collision_failsafe ? "on" : "off") << ", contact solver "
+            << contact_solver_name(c.contact_solver) << ", CCD span " << ccd_span_name(c.ccd_span) << ", tethers "
+            << tethers.str() << "\n";
 }
 
 void print_scene(const std::string& path) {

@@ -5,12 +5,12 @@
 #include "backends/body_cleaning.hpp"
 #include "backends/simulation.hpp"
 #include "core/hash.hpp"
-#include "core/schedules.hpp"
 #include "io/cache_file.hpp"
 #include "io/geo_writeback.hpp"
 #include "io/scene_file.hpp"
 #include "io/scene_overrides.hpp"
 #include "io/scene_source.hpp"
+#include "scene/schedules.hpp"
 
 #include <unistd.h>
 
@@ -166,13 +166,13 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   if (o.iterations >= 0) st.iterations = o.iterations;
   if (o.collision_passes >= 0) st.collision_passes = o.collision_passes;
   if (o.smoothing >= 0) st.smoothing_iterations = o.smoothing;
-  if (o.no_impact_zones) st.impact_zone_smoothing = false;
-  if (o.no_failsafe) st.collision_failsafe = false;
-  apply_self_collision(o.self_collision, st.self_collision);
-  apply_contact_model(o.contact_model, st.contact_model);
-  apply_pair_refresh(o.pair_refresh, st.pair_refresh);
-  apply_contact_solver(o.contact_solver, st.contact_solver);
-  apply_ccd_span(o.ccd_span, st.ccd_span);
+  if (o.no_impact_zones) st.collision.impact_zone_smoothing = false;
+  if (o.no_failsafe) st.collision.collision_failsafe = false;
+  apply_self_collision(o.self_collision, st.collision.self_collision);
+  apply_contact_model(o.contact_model, st.collision.contact_model);
+  apply_pair_refresh(o.pair_refresh, st.collision.pair_refresh);
+  apply_contact_solver(o.contact_solver, st.collision.contact_solver);
+  apply_ccd_span(o.ccd_span, st.collision.ccd_span);
   apply_tethers(o.tethers, st.tether_stretch);
   std::unique_ptr<io::GeoFrameWriter> geo;  // --geo-sequence; a --like file is checked before anything is written
   try {

@@ -15,7 +15,7 @@ class IntersectionCounter {
  public:
   virtual ~IntersectionCounter() = default;
   // Pairs of triangles that intersect at positions x (adjacent pairs excluded). Throws InputError naming the
-  // mesh when x fails the checks a scene's cloth passes (validate_mesh, core/mesh_checks.hpp).
+  // mesh when x fails the checks a scene's cloth passes (validate_mesh, scene/mesh_checks.hpp).
   virtual long count(const std::vector<Vec3>& x) = 0;
 };
 

@@ -2,7 +2,7 @@
 #pragma once
 #include "backends/intersection_counter.hpp"
 #include "collision/mesh_intersections.hpp"
-#include "core/mesh_checks.hpp"
+#include "scene/mesh_checks.hpp"
 
 namespace weft {
 

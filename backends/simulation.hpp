@@ -2,8 +2,8 @@
 // their execution space; the rest of weft sees only this interface.
 #pragma once
 #include "backends/backend.hpp"
-#include "core/frame_stats.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
+#include "solver/frame_stats.hpp"
 
 #include <cstdint>
 #include <memory>

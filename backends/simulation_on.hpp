@@ -3,7 +3,7 @@
 #include "backends/simulation.hpp"
 #include "collision/collision_handler.hpp"
 #include "collision/mesh_intersections.hpp"
-#include "core/solver.hpp"
+#include "solver/solver.hpp"
 
 #include <algorithm>
 
@@ -14,7 +14,7 @@ class SimulationOn final : public Simulation {
  public:
   explicit SimulationOn(const Scene& scene) : solver_(scene), intersections_(scene.triangles) {
     // A scene pays only for the stages it uses: no collision stage without colliders or self collision.
-    if (!scene.colliders.empty() || scene.settings.self_collision) {
+    if (!scene.colliders.empty() || scene.settings.collision.self_collision) {
       auto handler = std::make_unique<CollisionHandler<Exec>>(scene);
       collisions_ = handler.get();
       solver_.set_collision_stage(std::move(handler));

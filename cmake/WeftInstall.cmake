@@ -5,7 +5,7 @@
 #                                                        identical apply to callers' kernels too)
 #   DIR/lib/libweft_io_{formats,hdf5,render}.a           weft::io_formats, weft::io_hdf5, weft::io_render, and
 #                                                        weft::io, which links all three
-#   DIR/include/weft/{core,constraints,collision,backends,io}/*.hpp, weft_version.hpp
+#   DIR/include/weft/{core,scene,constraints,collision,solver,backends,io}/*.hpp, weft_version.hpp
 #   DIR/lib/cmake/weft/weftConfig.cmake, weftConfigVersion.cmake, weftTargets*.cmake
 include(CMakePackageConfigHelpers)
 set(WEFT_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/weft)
@@ -20,7 +20,7 @@ install(TARGETS ${_weft_targets} EXPORT weftTargets ARCHIVE DESTINATION ${CMAKE_
 install(EXPORT weftTargets NAMESPACE weft:: DESTINATION ${WEFT_INSTALL_CMAKEDIR})
 
 # Headers keep their folders under include/weft/. io/usd/ is the private interface of the USD module.
-install(DIRECTORY core constraints collision backends io DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/weft
+install(DIRECTORY core scene constraints collision solver backends io DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/weft
         FILES_MATCHING PATTERN "*.hpp" PATTERN "usd" EXCLUDE)
 install(FILES ${PROJECT_BINARY_DIR}/weft_version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/weft)
 

@@ -2,7 +2,7 @@
 // all colliders, with the triangles around each vertex and which triangles bound a closed collider, and
 // the cloth triangles' layers as bits with each layer's thickness.
 #pragma once
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <array>
 #include <cstdint>

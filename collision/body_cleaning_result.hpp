@@ -1,7 +1,7 @@
 // What the animation solvability check (paper sec. 3, "Data cleaning"; docs/solvability.md) is asked to
 // do and what it reports, host side and backend-free: the kernels are in collision/body_cleaning.hpp.
 #pragma once
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <string>
 #include <vector>

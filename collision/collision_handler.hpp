@@ -17,9 +17,9 @@
 #include "collision/lbvh.hpp"
 #include "collision/narrow_pipeline.hpp"
 #include "collision/representative.hpp"
-#include "core/scene.hpp"
 #include "core/solver_state.hpp"
 #include "core/stage_timer.hpp"
+#include "scene/scene.hpp"
 
 #include <map>
 #include <optional>
@@ -57,26 +57,18 @@ class CollisionHandler final : public CollisionStage<Exec> {
     double seconds_lbvh_build = 0, seconds_broad_phase = 0, seconds_narrow_phase = 0, seconds_contact_colouring = 0;
   };
 
-  explicit CollisionHandler(const Scene& s) : cloth_bvh_(Exec()), collider_bvh_(Exec()) {
-    const SolverSettings& st = s.settings;
-    ns_.static_friction = st.static_friction;
-    ns_.dynamic_friction = st.dynamic_friction;
-    ns_.layer_shock = st.layer_shock;
-    const real rad = st.parallel_edge_degrees * pi / 180;
+  explicit CollisionHandler(const Scene& s)
+      : settings_(s.settings.collision), cloth_bvh_(Exec()), collider_bvh_(Exec()) {
+    ns_.static_friction = settings_.static_friction;
+    ns_.dynamic_friction = settings_.dynamic_friction;
+    ns_.layer_shock = settings_.layer_shock;
+    const real rad = settings_.parallel_edge_degrees * pi / 180;
     ns_.min_sin_angle = sin_small(rad);
-    self_ = st.self_collision;
-    smoothing_ = st.impact_zone_smoothing;
-    epsilon_ = st.impact_zone_epsilon;
-    sweeps_ = st.impact_zone_sweeps;
-    failsafe_ = st.collision_failsafe;
-    jacobi_ = st.contact_solver == ContactSolver::Jacobi;
-    per_pass_ = st.ccd_span == CcdSpan::Pass && st.collision_passes > 1;
-    passes_ = st.collision_passes;
-    profile_ = st.profile;
-    proximity_ = st.contact_model == ContactModel::Proximity;
-    early_fraction_ = st.early_pass_fraction;
-    max_early_ = st.max_early_passes;
-    refresh_ = st.pair_refresh;
+    jacobi_ = settings_.contact_solver == ContactSolver::Jacobi;
+    per_pass_ = settings_.ccd_span == CcdSpan::Pass && s.settings.collision_passes > 1;
+    passes_ = s.settings.collision_passes;
+    profile_ = s.settings.profile;
+    proximity_ = settings_.contact_model == ContactModel::Proximity;
     // Cloth side.
     cloth_tris_ = upload_tris(s.triangles);
     cloth_rmask_ = upload(representative_features(s.triangles, int(s.points.size())), "weft::cloth_rmask");
@@ -162,7 +154,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
       if (collider_boxes_.extent(0) > 0) collider_bvh_.refit(collider_boxes_);
     });
     long n = 0;
-    if (self_) n += narrow(cloth, cloth, /*self*/ true, n);
+    if (settings_.self_collision) n += narrow(cloth, cloth, /*self*/ true, n);
     if (collider_boxes_.extent(0) > 0) n += narrow(cloth, collider, false, n);
     ncontacts_ = n;
     if (per_pass_ && ++pass_in_substep_ < passes_) {
@@ -194,11 +186,11 @@ class CollisionHandler final : public CollisionStage<Exec> {
   // The crossing fail-safe over fresh candidate pairs (boxes from x_start to the final x).
   void finish_positions(const SolverState<Exec>& s, real) override {
     if (proximity_) return bounds_->truncate(s.exec, s.x, s.w);  // after the smoothing sweeps
-    if (!failsafe_) return;
+    if (!settings_.collision_failsafe) return;
     update_boxes(s.exec, cloth_side(s), collider_side(s), cloth_failsafe_margin_);
     cloth_bvh_.refit(cloth_boxes_);
     long nself = 0, ncollider = 0;
-    if (self_) nself = cloth_bvh_.query_self(KeepAllPairs{}, pairs_);
+    if (settings_.self_collision) nself = cloth_bvh_.query_self(KeepAllPairs{}, pairs_);
     if (collider_boxes_.extent(0) > 0) {
       collider_bvh_.refit(collider_boxes_);
       ncollider = collider_bvh_.query(View<const Aabb*>(cloth_boxes_), KeepAllPairs{}, collider_pairs_);
@@ -219,7 +211,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
     const long cut = bounds_->cut_count(s.exec) + held_;
     stats_.points_cut_back += cut - held_;
     held_ = 0;
-    if (early_in_substep_ >= max_early_ || !(real(cut) > early_fraction_ * real(bounds_->movable()))) return false;
+    if (early_in_substep_ >= settings_.max_early_passes ||
+        !(real(cut) > settings_.early_pass_fraction * real(bounds_->movable())))
+      return false;
     ++early_in_substep_;
     ++stats_.early_passes;
     early_next_ = true;
@@ -227,8 +221,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
   }
 
   void end_substep(const SolverState<Exec>& s, real) override {
-    if (!smoothing_) return;
-    stats_.zones = zones_.smooth(s.exec, contacts_, ncontacts_, s.x, s.collider_x, s.v, epsilon_, sweeps_);
+    if (!settings_.impact_zone_smoothing) return;
+    stats_.zones = zones_.smooth(s.exec, contacts_, ncontacts_, s.x, s.collider_x, s.v, settings_.impact_zone_epsilon,
+                                 settings_.impact_zone_sweeps);
   }
 
   // A proximity query (collision/displacement_bounds.hpp): X0 is where the substep started (its first
@@ -254,8 +249,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
       // An early pass runs because points were cut back: it queries afresh, which resets what they spent
       // and widens the margins where they want to move. Letting it keep the pairs, as a scheduled pass
       // may, saved nothing on the skirt: by then most points had spent half of what the pairs allow.
-      refresh = refresh_ && self_ && !build_ && !early_next_ &&
-                !(real(b.spent(s.exec, from, s.w)) > early_fraction_ * real(b.movable()));
+      refresh = settings_.pair_refresh && settings_.self_collision && !build_ && !early_next_ &&
+                !(real(b.spent(s.exec, from, s.w)) > settings_.early_pass_fraction * real(b.movable()));
       early_next_ = false;
       b.prepare(s.exec, from, s.x, s.w, cloth_tris_, first, refresh);
       cloth.x = cloth.xs = cloth.xo = b.x0();
@@ -281,7 +276,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
       }
     });
     long n = 0;
-    if (self_) {
+    if (settings_.self_collision) {
       NarrowSettings ns = ns_;
       ns.self = true;
       if (!refresh) timed("weft::broad_phase", stats_.seconds_broad_phase, [&] { nself_pairs_ = cloth_bvh_.query_self(KeepAllPairs{}, pairs_); });
@@ -409,20 +404,17 @@ class CollisionHandler final : public CollisionStage<Exec> {
   }
 
  private:
+  const CollisionSettings settings_;
   NarrowSettings ns_;
-  bool self_ = true, smoothing_ = true, failsafe_ = true, profile_ = false, jacobi_ = false, per_pass_ = false;
+  bool profile_ = false, jacobi_ = false, per_pass_ = false;
   bool proximity_ = false, build_ = true;
-  int passes_ = 1, pass_in_substep_ = 0, early_in_substep_ = 0, max_early_ = 0;
-  real early_fraction_ = 0;
+  int passes_ = 1, pass_in_substep_ = 0, early_in_substep_ = 0;
   long held_ = 0;  // points the last query's truncation held short of their prediction
   long nself_pairs_ = 0;  // proximity: self pairs of the last full query (in pairs_)
-  bool refresh_ = true;   // proximity: passes may keep the last full query's self pairs
   bool early_next_ = false;  // proximity: wants_pass asked for the next pass
   BoundSettings bound_settings_;
   std::optional<DisplacementBounds<Exec>> bounds_;
   View<Vec3*> x_pass_;  // cloth positions at the previous pass of the substep (CcdSpan::Pass)
-  real epsilon_ = 0.1;
-  int sweeps_ = 4;
   long ncontacts_ = 0;
   View<int* [3]> cloth_tris_, collider_tris_, collider_nb_;
   View<uint8_t*> cloth_rmask_, collider_rmask_;

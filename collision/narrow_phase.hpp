@@ -14,7 +14,7 @@ namespace weft {
 
 // One side of a pair: a cloth or collider mesh at the start (xs) and end (x) of the motion tested, and at
 // the start of the substep (xo), which decides the side of a two-sided contact. xs is xo unless collision
-// passes test only the motion since the previous pass (SolverSettings::ccd_span).
+// passes test only the motion since the previous pass (CollisionSettings::ccd_span).
 template <class Mem>
 struct SideMesh {
   Kokkos::View<const Vec3*, Mem> x, xs, xo;

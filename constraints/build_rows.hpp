@@ -1,7 +1,7 @@
 // Turns a scene's constraint tables into solver rows (host side, once per scene).
 #pragma once
 #include "constraints/rows.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <vector>
 

@@ -1,7 +1,7 @@
 // Tethers of a scene (constraints/tether.hpp), built on the host once per scene.
 #pragma once
 #include "constraints/tether.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <vector>
 

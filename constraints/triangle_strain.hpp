@@ -5,7 +5,7 @@
 // as cloth buckles rather than compresses. A stretched edge's length / rest - 1 is at most this.
 #pragma once
 #include "constraints/triarap.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <array>
 #include <vector>

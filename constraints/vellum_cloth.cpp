@@ -37,10 +37,10 @@ int add_cloth_piece(Scene& s, const std::vector<Vec3>& x, const std::vector<std:
         c.distance.push_back({first + e[0], first + e[1], norm(x[e[1]] - x[e[0]]), stretch});
       break;
     case StretchModel::Triarap:
-    case StretchModel::TriarapNormalized:
+    case StretchModel::TriarapNorm:
       for (const auto& t : tris) {
         TriarapConstraint r{first + t[0], first + t[1], first + t[2], {0, 0, 0, 0}, 0,
-                            mat.stretch == StretchModel::TriarapNormalized, stretch};
+                            mat.stretch == StretchModel::TriarapNorm, stretch};
         triarap_rest(x[t[0]], x[t[1]], x[t[2]], r.dm_inv, r.area);
         c.triarap.push_back(r);
       }

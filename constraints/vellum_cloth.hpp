@@ -2,14 +2,15 @@
 // area density, thickness, friction and layer; edges get distance constraints (or triangles get triangle
 // stretch, or the FEM membrane), interior edges get bend constraints; rest values from the current shape.
 #pragma once
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <array>
 #include <vector>
 
 namespace weft {
 
-enum class StretchModel { Distance, Triarap, TriarapNormalized, Fem };
+// The material's "stretch" (docs/scene-json.md): distance, triarap, triarapnorm or fem, as Vellum names them.
+enum class StretchModel { Distance, Triarap, TriarapNorm, Fem };
 
 struct ClothMaterial {
   real density = 0.1;             // kg/m^2

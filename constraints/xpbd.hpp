@@ -5,25 +5,9 @@
 //   x_i    += w_i g_i dlambda
 #pragma once
 #include "core/vec.hpp"
+#include "scene/material.hpp"
 
 namespace weft {
-
-// Per-constraint material, as stored: compliances (1/stiffness; 0 = rigid) and Vellum's damping ratio.
-struct XpbdMaterial {
-  real compliance = 0;           // used while C >= 0
-  real compress_compliance = 0;  // used while C < 0 (Vellum's compressstiffness)
-  real damping_ratio = 0;
-};
-
-// Vellum stiffness -> compliance; compressstiffness -1 means "same as stiffness". k = 0 is never stored
-// (those constraints are skipped when built).
-inline XpbdMaterial xpbd_material(real stiffness, real compress_stiffness, real damping_ratio) {
-  XpbdMaterial m;
-  m.compliance = 1 / stiffness;
-  m.compress_compliance = compress_stiffness < 0 ? m.compliance : 1 / compress_stiffness;
-  m.damping_ratio = damping_ratio;
-  return m;
-}
 
 // dlambda for one constraint with N particles. g: gradients; w: inverse masses; dx: x_i - x_i^start.
 // Returns 0 when no particle can move.

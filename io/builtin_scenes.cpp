@@ -33,7 +33,7 @@ Scene hanging_sheet(int res) {
   s.points.stopped[0] = 1;
   s.points.stopped[res] = 1;
   s.settings.frame_end = 72;
-  s.settings.self_collision = false;  // a single hanging sheet: the solver's reference scene
+  s.settings.collision.self_collision = false;  // a single hanging sheet: the solver's reference scene
   return s;
 }
 

@@ -1,6 +1,6 @@
 // Scenes generated in code: `weft run builtin:<name> [--res N]`.
 #pragma once
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <string>
 #include <vector>

@@ -2,8 +2,8 @@
 // the run goes on (single-writer / multiple-reader), positions and velocities stored exactly; and the names
 // of per-frame files, and OBJ frames, that `weft export` makes of them.
 #pragma once
-#include "core/frame_stats.hpp"
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
+#include "solver/frame_stats.hpp"
 
 #include <array>
 #include <cstdint>

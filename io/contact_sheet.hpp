@@ -3,8 +3,8 @@
 // a supersampled colour + depth buffer (a z-buffer, flat shading, two-sided lighting); Cairo composes the
 // cells, labels and the PNG.
 #pragma once
-#include "core/scene.hpp"
 #include "io/cache_file.hpp"
+#include "scene/scene.hpp"
 
 #include <array>
 #include <string>

@@ -2,7 +2,7 @@
 // waist and swings its legs and arms, wearing a flared skirt of three layers, each sewn from six gores
 // (separate panels joined by stitches along their side seams) and pinned at the waist to the figure.
 #pragma once
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 namespace weft::io {
 

@@ -153,7 +153,8 @@ std::string resolve(const std::string& json_path, const std::string& file) {
 void read_settings(const Node& n, Scene& s) {
   n.object({"fps", "frames", "substeps", "iterations", "collision_passes", "smoothing", "gravity", "wind", "damping",
             "impact_zone_smoothing", "collision_failsafe", "contact_solver", "ccd_span", "tethers", "collisions",
-            "contact_model", "early_pass_fraction", "max_early_passes", "pair_refresh"});
+            "contact_model", "early_pass_fraction", "max_early_passes", "pair_refresh", "chebyshev_rho",
+            "chebyshev_delay"});
   SolverSettings& st = s.settings;
   st.fps = n.number("fps", st.fps, Range::Positive);
   if (n.has("frames")) {
@@ -166,29 +167,33 @@ void read_settings(const Node& n, Scene& s) {
   st.iterations = n.integer("iterations", st.iterations, 0);
   st.collision_passes = n.integer("collision_passes", st.collision_passes, 0);
   st.smoothing_iterations = n.integer("smoothing", st.smoothing_iterations, 0);
+  st.chebyshev_rho = n.number("chebyshev_rho", st.chebyshev_rho, Range::NonNegative);
+  if (!(st.chebyshev_rho < 1)) n["chebyshev_rho"].fail("expected a rate in [0, 1) (0: no Chebyshev acceleration)");
+  st.chebyshev_delay = n.integer("chebyshev_delay", st.chebyshev_delay, 1);
   st.gravity = n.vec3("gravity", st.gravity);
   st.wind = n.vec3("wind", st.wind);
   st.velocity_damping = n.number("damping", st.velocity_damping, Range::NonNegative);
-  if (n.has("impact_zone_smoothing")) st.impact_zone_smoothing = n["impact_zone_smoothing"].boolean();
-  if (n.has("collision_failsafe")) st.collision_failsafe = n["collision_failsafe"].boolean();
+  if (n.has("impact_zone_smoothing")) st.collision.impact_zone_smoothing = n["impact_zone_smoothing"].boolean();
+  if (n.has("collision_failsafe")) st.collision.collision_failsafe = n["collision_failsafe"].boolean();
   if (n.has("contact_solver")) {
     const auto v = parse_contact_solver(n["contact_solver"].string());
     if (!v) n["contact_solver"].fail("expected \"gauss-seidel\" or \"jacobi\"");
-    st.contact_solver = *v;
+    st.collision.contact_solver = *v;
   }
   if (n.has("contact_model")) {
     const std::string v = n["contact_model"].string();
     const auto m = parse_contact_model(v);
     if (!m) n["contact_model"].fail("expected \"proximity\" or \"ccd\"");
-    st.contact_model = *m;
+    st.collision.contact_model = *m;
   }
-  st.early_pass_fraction = n.number("early_pass_fraction", st.early_pass_fraction, Range::NonNegative);
-  st.max_early_passes = n.integer("max_early_passes", st.max_early_passes, 0);
-  if (n.has("pair_refresh")) st.pair_refresh = n["pair_refresh"].boolean();
+  st.collision.early_pass_fraction =
+      n.number("early_pass_fraction", st.collision.early_pass_fraction, Range::NonNegative);
+  st.collision.max_early_passes = n.integer("max_early_passes", st.collision.max_early_passes, 0);
+  if (n.has("pair_refresh")) st.collision.pair_refresh = n["pair_refresh"].boolean();
   if (n.has("ccd_span")) {
     const auto v = parse_ccd_span(n["ccd_span"].string());
     if (!v) n["ccd_span"].fail("expected \"substep\" or \"pass\"");
-    st.ccd_span = *v;
+    st.collision.ccd_span = *v;
   }
   if (n.has("tethers")) {
     st.tether_stretch = n.number("tethers", st.tether_stretch, Range::NonNegative);
@@ -212,7 +217,7 @@ ClothMaterial read_material(const Node& n) {
     else if (model == "triarap")
       m.stretch = StretchModel::Triarap;
     else if (model == "triarapnorm")
-      m.stretch = StretchModel::TriarapNormalized;
+      m.stretch = StretchModel::TriarapNorm;
     else if (model == "fem")
       m.stretch = StretchModel::Fem;
     else

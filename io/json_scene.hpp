@@ -1,7 +1,7 @@
 // Scenes authored by hand as JSON: solver settings, cloth pieces from OBJ files or generators with Vellum-style
 // materials and pins, colliders from OBJ files, OBJ sequences or generators. Schema: docs/scene-json.md.
 #pragma once
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <string>
 

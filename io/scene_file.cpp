@@ -11,7 +11,8 @@ namespace {
 // A field added to these structs must be added to the file (and the format version raised): the sizes are
 // checked so that the scene file does not silently drop it (a field that fits in padding escapes the check).
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is stored as 3 doubles");
-static_assert(sizeof(SolverSettings) == 208, "SolverSettings changed: update the settings tables below");
+static_assert(sizeof(SolverSettings) == 208 && sizeof(CollisionSettings) == 88,
+              "SolverSettings or CollisionSettings changed: update the settings tables below");
 static_assert(sizeof(XpbdMaterial) == 24 && sizeof(DistanceConstraint) == 40 && sizeof(BendConstraint) == 48 &&
                   sizeof(TriarapConstraint) == 88 && sizeof(PinConstraint) == 72 && sizeof(AttachConstraint) == 64 &&
                   sizeof(PtPrimConstraint) == 96 && sizeof(FemConstraint) == 88,
@@ -19,42 +20,57 @@ static_assert(sizeof(XpbdMaterial) == 24 && sizeof(DistanceConstraint) == 40 && 
 
 using Dims = std::vector<hsize_t>;
 
-// Every SolverSettings field, by type: one attribute each (bools as 0/1 integers, vectors as 3 doubles); the
-// enums are written by write_settings itself.
-const std::pair<const char*, real SolverSettings::*> kRealSettings[] = {
-    {"fps", &SolverSettings::fps},
-    {"velocity_damping", &SolverSettings::velocity_damping},
-    {"static_friction", &SolverSettings::static_friction},
-    {"dynamic_friction", &SolverSettings::dynamic_friction},
-    {"layer_shock", &SolverSettings::layer_shock},
-    {"parallel_edge_degrees", &SolverSettings::parallel_edge_degrees},
-    {"impact_zone_epsilon", &SolverSettings::impact_zone_epsilon},
-    {"tether_stretch", &SolverSettings::tether_stretch},
-    {"early_pass_fraction", &SolverSettings::early_pass_fraction},
-    {"chebyshev_rho", &SolverSettings::chebyshev_rho},
+// A setting stored as one attribute: a field of SolverSettings itself or of its CollisionSettings.
+template <class T>
+struct Setting {
+  const char* name;
+  T SolverSettings::*own;
+  T CollisionSettings::*collision;
 };
-const std::pair<const char*, int SolverSettings::*> kIntSettings[] = {
-    {"frame_start", &SolverSettings::frame_start},
-    {"frame_end", &SolverSettings::frame_end},
-    {"substeps", &SolverSettings::substeps},
-    {"iterations", &SolverSettings::iterations},
-    {"collision_passes", &SolverSettings::collision_passes},
-    {"smoothing_iterations", &SolverSettings::smoothing_iterations},
-    {"impact_zone_sweeps", &SolverSettings::impact_zone_sweeps},
-    {"max_early_passes", &SolverSettings::max_early_passes},
-    {"chebyshev_delay", &SolverSettings::chebyshev_delay},
-    {"interleaved_jacobi", &SolverSettings::interleaved_jacobi},
+template <class T>
+constexpr Setting<T> own(const char* name, T SolverSettings::*m) { return {name, m, nullptr}; }
+template <class T>
+constexpr Setting<T> collision(const char* name, T CollisionSettings::*m) { return {name, nullptr, m}; }
+
+// The field of s (SolverSettings, const or not) that a setting names.
+template <class S, class T>
+auto& field(S& s, const Setting<T>& f) { return f.own ? s.*f.own : s.collision.*f.collision; }
+
+// Every SolverSettings field and CollisionSettings field, by type: one attribute each in the settings group
+// (bools as 0/1 integers, vectors as 3 doubles); the enums are written by write_settings itself.
+const Setting<real> kRealSettings[] = {
+    own("fps", &SolverSettings::fps),
+    own("velocity_damping", &SolverSettings::velocity_damping),
+    collision("static_friction", &CollisionSettings::static_friction),
+    collision("dynamic_friction", &CollisionSettings::dynamic_friction),
+    collision("layer_shock", &CollisionSettings::layer_shock),
+    collision("parallel_edge_degrees", &CollisionSettings::parallel_edge_degrees),
+    collision("impact_zone_epsilon", &CollisionSettings::impact_zone_epsilon),
+    own("tether_stretch", &SolverSettings::tether_stretch),
+    collision("early_pass_fraction", &CollisionSettings::early_pass_fraction),
+    own("chebyshev_rho", &SolverSettings::chebyshev_rho),
 };
-const std::pair<const char*, bool SolverSettings::*> kBoolSettings[] = {
-    {"self_collision", &SolverSettings::self_collision},
-    {"impact_zone_smoothing", &SolverSettings::impact_zone_smoothing},
-    {"collision_failsafe", &SolverSettings::collision_failsafe},
-    {"pair_refresh", &SolverSettings::pair_refresh},
-    {"profile", &SolverSettings::profile},
+const Setting<int> kIntSettings[] = {
+    own("frame_start", &SolverSettings::frame_start),
+    own("frame_end", &SolverSettings::frame_end),
+    own("substeps", &SolverSettings::substeps),
+    own("iterations", &SolverSettings::iterations),
+    own("collision_passes", &SolverSettings::collision_passes),
+    own("smoothing_iterations", &SolverSettings::smoothing_iterations),
+    collision("impact_zone_sweeps", &CollisionSettings::impact_zone_sweeps),
+    collision("max_early_passes", &CollisionSettings::max_early_passes),
+    own("chebyshev_delay", &SolverSettings::chebyshev_delay),
 };
-const std::pair<const char*, Vec3 SolverSettings::*> kVecSettings[] = {
-    {"gravity", &SolverSettings::gravity},
-    {"wind", &SolverSettings::wind},
+const Setting<bool> kBoolSettings[] = {
+    collision("self_collision", &CollisionSettings::self_collision),
+    collision("impact_zone_smoothing", &CollisionSettings::impact_zone_smoothing),
+    collision("collision_failsafe", &CollisionSettings::collision_failsafe),
+    collision("pair_refresh", &CollisionSettings::pair_refresh),
+    own("profile", &SolverSettings::profile),
+};
+const Setting<Vec3> kVecSettings[] = {
+    own("gravity", &SolverSettings::gravity),
+    own("wind", &SolverSettings::wind),
 };
 
 const double* flat(const std::vector<Vec3>& v) { return v.empty() ? nullptr : &v[0].x; }
@@ -334,59 +350,67 @@ std::vector<Collider> read_colliders(const h5::File& f) {
 
 void write_settings(const h5::File& f, const std::string& group, const SolverSettings& s) {
   h5::create_group(f, group);
-  for (const auto& [name, m] : kRealSettings) h5::write_attribute(f, group, name, s.*m);
-  for (const auto& [name, m] : kIntSettings) h5::write_attribute(f, group, name, s.*m);
-  for (const auto& [name, m] : kBoolSettings) h5::write_attribute(f, group, name, int(s.*m));
-  for (const auto& [name, m] : kVecSettings) h5::write_vector_attribute(f, group, name, {(s.*m).x, (s.*m).y, (s.*m).z});
-  h5::write_attribute(f, group, "contact_model", contact_model_name(s.contact_model));
+  for (const auto& m : kRealSettings) h5::write_attribute(f, group, m.name, field(s, m));
+  for (const auto& m : kIntSettings) h5::write_attribute(f, group, m.name, field(s, m));
+  for (const auto& m : kBoolSettings) h5::write_attribute(f, group, m.name, int(field(s, m)));
+  for (const auto& m : kVecSettings) {
+    const Vec3& v = field(s, m);
+    h5::write_vector_attribute(f, group, m.name, {v.x, v.y, v.z});
+  }
+  h5::write_attribute(f, group, "contact_model", contact_model_name(s.collision.contact_model));
   // Two choices keep the 0/1 attributes they were first stored as (docs/formats.md).
-  h5::write_attribute(f, group, "jacobi_contacts", int(s.contact_solver == ContactSolver::Jacobi));
-  h5::write_attribute(f, group, "ccd_per_pass", int(s.ccd_span == CcdSpan::Pass));
+  h5::write_attribute(f, group, "jacobi_contacts", int(s.collision.contact_solver == ContactSolver::Jacobi));
+  h5::write_attribute(f, group, "ccd_per_pass", int(s.collision.ccd_span == CcdSpan::Pass));
 }
 
 SolverSettings read_settings(const h5::File& f, const std::string& group) {
   SolverSettings s;
-  for (const auto& [name, m] : kRealSettings) {
+  for (const auto& m : kRealSettings) {
+    const char* name = m.name;
     // Absent in files written before tethers existed: none.
     if (std::strcmp(name, "tether_stretch") == 0 && !h5::has_attribute(f, group, name)) continue;
     // Absent in files written before proximity contacts: they ran the ccd model, which has none.
     if (std::strcmp(name, "early_pass_fraction") == 0 && !h5::has_attribute(f, group, name)) continue;
-    // Absent in files written before the accelerations: none.
-    if (std::strcmp(name, "chebyshev_rho") == 0 && !h5::has_attribute(f, group, name)) continue;
-    s.*m = h5::read_attribute<double>(f, group, name);
+    // Absent in files written before Chebyshev acceleration: they ran without it.
+    if (std::strcmp(name, "chebyshev_rho") == 0 && !h5::has_attribute(f, group, name)) { s.chebyshev_rho = 0; continue; }
+    field(s, m) = h5::read_attribute<double>(f, group, name);
   }
-  for (const auto& [name, m] : kIntSettings) {
+  for (const auto& m : kIntSettings) {
+    const char* name = m.name;
     if (std::strcmp(name, "max_early_passes") == 0 && !h5::has_attribute(f, group, name)) continue;
-    const bool accel = std::strcmp(name, "chebyshev_delay") == 0 || std::strcmp(name, "interleaved_jacobi") == 0;
-    if (accel && !h5::has_attribute(f, group, name)) continue;
-    s.*m = h5::read_attribute<int>(f, group, name);
+    if (std::strcmp(name, "chebyshev_delay") == 0 && !h5::has_attribute(f, group, name)) continue;
+    field(s, m) = h5::read_attribute<int>(f, group, name);
   }
   // Files written before the proximity model ran the paper's.
-  s.contact_model = ContactModel::Ccd;
+  s.collision.contact_model = ContactModel::Ccd;
   if (h5::has_attribute(f, group, "contact_model")) {
     const std::string m = h5::read_string_attribute(f, group, "contact_model");
     const auto model = parse_contact_model(m);
     if (!model) throw FormatError(f.path() + ": " + group + ": unknown contact_model '" + m + "' (proximity or ccd)");
-    s.contact_model = *model;
+    s.collision.contact_model = *model;
   }
   // Absent in files written before the Jacobi contact solver: Gauss-Seidel.
   if (h5::has_attribute(f, group, "jacobi_contacts") && h5::read_attribute<int>(f, group, "jacobi_contacts") != 0)
-    s.contact_solver = ContactSolver::Jacobi;
+    s.collision.contact_solver = ContactSolver::Jacobi;
   // Absent in files written before the span existed, whose passes all tested the whole substep.
-  s.ccd_span = CcdSpan::Substep;
+  s.collision.ccd_span = CcdSpan::Substep;
   if (h5::has_attribute(f, group, "ccd_per_pass") && h5::read_attribute<int>(f, group, "ccd_per_pass") != 0)
-    s.ccd_span = CcdSpan::Pass;
-  for (const auto& [name, m] : kBoolSettings) {
+    s.collision.ccd_span = CcdSpan::Pass;
+  for (const auto& m : kBoolSettings) {
+    const char* name = m.name;
     // Added after the first files of this format version were written: absent means the default.
     const bool optional = std::strcmp(name, "collision_failsafe") == 0;
     // Absent in files written before it existed, whose passes all queried afresh.
-    if (std::strcmp(name, "pair_refresh") == 0 && !h5::has_attribute(f, group, name)) { s.*m = false; continue; }
+    if (std::strcmp(name, "pair_refresh") == 0 && !h5::has_attribute(f, group, name)) {
+      field(s, m) = false;
+      continue;
+    }
     if (optional && !h5::has_attribute(f, group, name)) continue;
-    s.*m = h5::read_attribute<int>(f, group, name) != 0;
+    field(s, m) = h5::read_attribute<int>(f, group, name) != 0;
   }
-  for (const auto& [name, m] : kVecSettings) {
-    const std::vector<double> v = h5::read_vector_attribute(f, group, name, 3);
-    s.*m = {v[0], v[1], v[2]};
+  for (const auto& m : kVecSettings) {
+    const std::vector<double> v = h5::read_vector_attribute(f, group, m.name, 3);
+    field(s, m) = {v[0], v[1], v[2]};
   }
   return s;
 }
@@ -394,17 +418,19 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
 std::vector<std::string> differing_settings(const SolverSettings& a, const SolverSettings& b) {
   const auto same = [](real x, real y) { return std::memcmp(&x, &y, sizeof x) == 0; };
   std::vector<std::string> names;
-  for (const auto& [name, m] : kRealSettings)
-    if (!same(a.*m, b.*m)) names.push_back(name);
-  for (const auto& [name, m] : kIntSettings)
-    if (a.*m != b.*m) names.push_back(name);
-  for (const auto& [name, m] : kBoolSettings)
-    if (a.*m != b.*m) names.push_back(name);
-  if (a.contact_model != b.contact_model) names.push_back("contact_model");
-  if (a.contact_solver != b.contact_solver) names.push_back("contact_solver");
-  if (a.ccd_span != b.ccd_span) names.push_back("ccd_span");
-  for (const auto& [name, m] : kVecSettings)
-    if (!same((a.*m).x, (b.*m).x) || !same((a.*m).y, (b.*m).y) || !same((a.*m).z, (b.*m).z)) names.push_back(name);
+  for (const auto& m : kRealSettings)
+    if (!same(field(a, m), field(b, m))) names.push_back(m.name);
+  for (const auto& m : kIntSettings)
+    if (field(a, m) != field(b, m)) names.push_back(m.name);
+  for (const auto& m : kBoolSettings)
+    if (field(a, m) != field(b, m)) names.push_back(m.name);
+  if (a.collision.contact_model != b.collision.contact_model) names.push_back("contact_model");
+  if (a.collision.contact_solver != b.collision.contact_solver) names.push_back("contact_solver");
+  if (a.collision.ccd_span != b.collision.ccd_span) names.push_back("ccd_span");
+  for (const auto& m : kVecSettings) {
+    const Vec3 &u = field(a, m), &v = field(b, m);
+    if (!same(u.x, v.x) || !same(u.y, v.y) || !same(u.z, v.z)) names.push_back(m.name);
+  }
   return names;
 }
 

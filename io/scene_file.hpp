@@ -1,7 +1,7 @@
 // Scene files (HDF5, layout in docs/formats.md): everything a Scene holds, stored exactly, so a scene
 // prepared once (exported from Houdini, generated, edited in Python) runs the same anywhere.
 #pragma once
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <string>
 #include <vector>

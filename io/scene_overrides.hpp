@@ -2,7 +2,7 @@
 // settings of a JSON scene's "settings", and cloth-wide values (thickness, stiffness scales). The list, with
 // units and ranges, is in docs/farm.md and `weft run --set help`.
 #pragma once
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <string>
 #include <vector>

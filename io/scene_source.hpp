@@ -1,7 +1,7 @@
 // Where `weft run` and friends get a scene: builtin:NAME now; scene files are read here too.
 #pragma once
-#include "core/scene.hpp"
 #include "io/builtin_scenes.hpp"
+#include "scene/scene.hpp"
 
 #include <string>
 

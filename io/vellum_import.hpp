@@ -2,7 +2,7 @@
 // Vellum Constraints node writes (semantics: docs/vellum.md), and the animated colliders they attach to,
 // read from per-frame geometry files.
 #pragma once
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <array>
 #include <map>

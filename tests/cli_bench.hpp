@@ -1,7 +1,7 @@
 // `weft bench` from the command line: settings by name as weft run takes them, one JSON key per figure, and
-// the paper's schedules from the table weft run uses (core/schedules.hpp). Bench times; the tests check only
+// the paper's schedules from the table weft run uses (scene/schedules.hpp). Bench times; the tests check only
 // what it ran and wrote.
-#include "core/schedules.hpp"
+#include "scene/schedules.hpp"
 #include "tests/cli_fixture.hpp"
 
 #include <string>

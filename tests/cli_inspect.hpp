@@ -1,9 +1,9 @@
 // Commands that read what a run left: `weft compare` (bits or ULPs between two caches), `weft info` (a scene
 // or cache file, or this build and its named schedules), `weft check-intersections` (a mesh).
-#include "core/schedules.hpp"
 #include "io/builtin_scenes.hpp"
 #include "io/cache_file.hpp"
 #include "io/scene_file.hpp"
+#include "scene/schedules.hpp"
 #include "tests/cli_fixture.hpp"
 #include "tests/io_cache_fixture.hpp"
 
@@ -71,7 +71,7 @@ TEST(WEFT_TEST_SUITE, cli_info_describes_scene_and_cache_files) {
   EXPECT_NE(weft.output.find("not an HDF5 file"), std::string::npos) << weft.output;
 }
 
-// weft info names each row of core/schedules.hpp, one line each, for the report scripts to read.
+// weft info names each row of scene/schedules.hpp, one line each, for the report scripts to read.
 TEST(WEFT_TEST_SUITE, cli_info_lists_the_named_schedules) {
   WEFT_NEED_CLI();
   const ScratchDir dir("cli_info_schedules");

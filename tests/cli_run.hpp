@@ -2,9 +2,9 @@
 // stop or SIGINT) and resumed equals a straight run, outputs that cannot be written leave nothing, named
 // schedules and settings by name, and each run switch is recorded in the cache and checked on resume.
 #include "core/hash.hpp"
-#include "core/schedules.hpp"
 #include "io/cache_file.hpp"
 #include "io/hdf5_util.hpp"
+#include "scene/schedules.hpp"
 #include "tests/cli_fixture.hpp"
 
 #include <signal.h>
@@ -150,7 +150,7 @@ TEST(WEFT_TEST_SUITE, cli_run_set_is_kept_in_the_cache_and_a_resume_with_other_v
   EXPECT_NE(weft.output.find("stretch_stiffness_scale"), std::string::npos) << weft.output;
 }
 
-// weft run --schedule NAME: the row of core/schedules.hpp, recorded in the cache as plain settings; a name
+// weft run --schedule NAME: the row of scene/schedules.hpp, recorded in the cache as plain settings; a name
 // the table lacks is refused with the table's names.
 TEST(WEFT_TEST_SUITE, cli_run_schedule_sets_the_named_rows_settings) {
   WEFT_NEED_CLI();
@@ -237,7 +237,7 @@ TEST(WEFT_TEST_SUITE, cli_ccd_span_switch_is_recorded_and_resumed) {
   WEFT_NEED_CLI();
   const ScratchDir dir("cli_ccd_span");
   Cli weft(dir);
-  const std::string span = SolverSettings{}.ccd_span == CcdSpan::Pass ? "substep" : "pass";  // not the default
+  const std::string span = CollisionSettings{}.ccd_span == CcdSpan::Pass ? "substep" : "pass";  // not the default
   expect_recorded_and_resumed(weft, dir, {"run builtin:layer-stack --res 4 --quiet --contact-model ccd", "--ccd-span " + span,
                                           "CCD span " + span, "ccd_span", "--ccd-span frame", "--ccd-span"});
 }

@@ -187,8 +187,8 @@ TEST(WEFT_TEST_SUITE, cleaned_body_squeezes_the_sleeve_less) {
   s.settings.collision_passes = 1;
   // What the contacts make of the room cleaning gives: the fail-safe, which holds crossing points back in
   // their squeezed spots, would blur that.
-  s.settings.collision_failsafe = false;
-  s.settings.contact_model = weft::ContactModel::Ccd;  // impact zones count the squeeze in the paper's model
+  s.settings.collision.collision_failsafe = false;
+  s.settings.collision.contact_model = weft::ContactModel::Ccd;  // impact zones count the squeeze in the paper's model
   const long before = squeezed_points<Exec>(s);
   s.colliders = weft::clean_body_on<Exec>(s, {}).colliders;
   const long after = squeezed_points<Exec>(s);

@@ -112,7 +112,7 @@ TEST(WEFT_TEST_SUITE, proximity_refresh_spends_what_points_moved_since_the_full_
 TEST(WEFT_TEST_SUITE, proximity_twist_never_crosses_and_pins_follow_until_it_jams) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::Scene s = weft::io::make_builtin_scene("twist", {12});
-  ASSERT_EQ(s.settings.contact_model, weft::ContactModel::Proximity);  // the default
+  ASSERT_EQ(s.settings.collision.contact_model, weft::ContactModel::Proximity);  // the default
   weft::SimulationOn<Exec> sim(s);
   long passes = 0;
   weft::real lag = 0;
@@ -149,7 +149,7 @@ TEST(WEFT_TEST_SUITE, proximity_folding_sheet_stays_free_of_intersections) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::Scene s = weft::io::make_builtin_scene("drape-sphere", {14});
   weft::SimulationOn<Exec> sim(s);
-  ASSERT_TRUE(s.settings.pair_refresh);  // the default
+  ASSERT_TRUE(s.settings.collision.pair_refresh);  // the default
   long contacts = 0, passes = 0, queries = 0;
   for (int f = 0; f < 36; ++f) {
     const weft::FrameStats fs = sim.step_frame();

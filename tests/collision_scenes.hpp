@@ -89,7 +89,7 @@ real depth_in_box(const Vec3& p, real z, bool& behind) {
 TEST(WEFT_TEST_SUITE, fast_collider_never_leaves_cloth_inside_the_box) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::Scene s = weft::io::make_builtin_scene("fast-collider", {10});
-  s.settings.contact_model = weft::ContactModel::Ccd;
+  s.settings.collision.contact_model = weft::ContactModel::Ccd;
   weft::SimulationOn<Exec> sim(s);
   for (int f = 0; f < 10; ++f) {
     const weft::FrameStats fs = sim.step_frame();
@@ -127,10 +127,10 @@ real settled_rms_speed(bool smoothing, weft::ContactSolver solver = weft::Contac
                        weft::CcdSpan span = weft::CcdSpan::Pass, weft::ContactModel model = weft::ContactModel::Ccd) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::Scene s = weft::io::make_builtin_scene("layer-stack", {4});
-  s.settings.contact_model = model;
-  s.settings.impact_zone_smoothing = smoothing;
-  s.settings.contact_solver = solver;
-  s.settings.ccd_span = span;
+  s.settings.collision.contact_model = model;
+  s.settings.collision.impact_zone_smoothing = smoothing;
+  s.settings.collision.contact_solver = solver;
+  s.settings.collision.ccd_span = span;
   weft::SimulationOn<Exec> sim(s);
   weft::FrameStats fs;
   for (int f = 0; f < 24; ++f) {
@@ -182,7 +182,7 @@ real squeezed_rms_speed(bool smoothing) {
   s.settings.substeps = 20;
   s.settings.iterations = 10;
   s.settings.collision_passes = 1;
-  s.settings.impact_zone_smoothing = smoothing;
+  s.settings.collision.impact_zone_smoothing = smoothing;
   weft::SimulationOn<Exec> sim(s);
   weft::FrameStats fs;
   real sum = 0;
@@ -207,7 +207,7 @@ TEST(WEFT_TEST_SUITE, impact_zone_smoothing_calms_a_squeezed_layer_stack) {
 TEST(WEFT_TEST_SUITE, twist_stays_free_of_intersections_with_the_failsafe) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::Scene s = weft::io::make_builtin_scene("twist", {12});
-  s.settings.contact_model = weft::ContactModel::Ccd;
+  s.settings.collision.contact_model = weft::ContactModel::Ccd;
   weft::SimulationOn<Exec> sim(s);
   long moved_back = 0, pinned = 0;
   real lag = 0;
@@ -229,10 +229,10 @@ TEST(WEFT_TEST_SUITE, twist_stays_free_of_intersections_with_the_failsafe) {
 TEST(WEFT_TEST_SUITE, failsafe_leaves_converged_contacts_alone) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::Scene s = weft::io::make_builtin_scene("drape-sphere", {8});
-  s.settings.contact_model = weft::ContactModel::Ccd;
+  s.settings.collision.contact_model = weft::ContactModel::Ccd;
   uint64_t on = 0, off = 0;
   weft::test::run_frames<Exec>(s, 12, &on);
-  s.settings.collision_failsafe = false;
+  s.settings.collision.collision_failsafe = false;
   weft::test::run_frames<Exec>(s, 12, &off);
   EXPECT_EQ(on, off);
 }
@@ -241,12 +241,12 @@ TEST(WEFT_TEST_SUITE, failsafe_leaves_converged_contacts_alone) {
 TEST(WEFT_TEST_SUITE, jacobi_contacts_hash_is_pinned) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::Scene s = weft::io::make_builtin_scene("layer-stack", {4});
-  s.settings.contact_model = weft::ContactModel::Ccd;
-  s.settings.contact_solver = weft::ContactSolver::Jacobi;
+  s.settings.collision.contact_model = weft::ContactModel::Ccd;
+  s.settings.collision.contact_solver = weft::ContactSolver::Jacobi;
   uint64_t h = 0;
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "be259a0d72994ed1");
-  s.settings.ccd_span = weft::CcdSpan::Substep;  // every pass's CCD over the whole substep
+  s.settings.collision.ccd_span = weft::CcdSpan::Substep;  // every pass's CCD over the whole substep
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "745566c2d0d00b9d");
 }
@@ -257,11 +257,11 @@ TEST(WEFT_TEST_SUITE, collision_scene_hash_is_pinned) {
   uint64_t h = 0;
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "0f61eaebc1e2bc68");  // proximity contacts, the default (passes keep pairs)
-  s.settings.pair_refresh = false;                   // every pass queries afresh
+  s.settings.collision.pair_refresh = false;                   // every pass queries afresh
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "670bcdd1fbacb9a0");
-  s.settings.pair_refresh = true;
-  s.settings.contact_model = weft::ContactModel::Ccd;
+  s.settings.collision.pair_refresh = true;
+  s.settings.collision.contact_model = weft::ContactModel::Ccd;
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "303d4c051ec83421");  // either CCD span: its passes find the same contacts
 }

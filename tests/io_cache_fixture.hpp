@@ -1,8 +1,8 @@
 // Caches made up in the tests: a small header and frames of pseudo-random positions, velocities and
 // statistics whose every bit a reader must give back (io_cache, cli_inspect and cli_import_export).
 #pragma once
-#include "core/frame_stats.hpp"
 #include "io/cache_file.hpp"
+#include "solver/frame_stats.hpp"
 #include "tests/backend_fixture.hpp"
 
 #include <cstring>

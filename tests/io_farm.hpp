@@ -101,8 +101,8 @@ TEST(WEFT_TEST_SUITE, settings_by_name_change_the_solver_settings_and_the_cloth)
                           {"bend_stiffness_scale", "0.5"}});
   EXPECT_EQ(s.settings.substeps, 7);
   EXPECT_EQ(s.settings.gravity.y, -1.5);
-  EXPECT_EQ(s.settings.contact_model, ContactModel::Ccd);
-  EXPECT_FALSE(s.settings.pair_refresh);
+  EXPECT_EQ(s.settings.collision.contact_model, ContactModel::Ccd);
+  EXPECT_FALSE(s.settings.collision.pair_refresh);
   for (real t : s.points.thickness) EXPECT_EQ(t, 0.004);
   EXPECT_EQ(s.constraints.distance.at(0).m.compliance, compliance / 4);
   EXPECT_EQ(s.constraints.bend.at(0).m.compliance, bend / 0.5);

@@ -23,7 +23,7 @@ using weft::test::ScratchDir;
 // constraint kind, a second collider and non-default settings.
 Scene every_kind_scene() {
   Scene s = make_builtin_scene("skirt", {3});
-  for (StretchModel model : {StretchModel::Triarap, StretchModel::TriarapNormalized, StretchModel::Fem}) {
+  for (StretchModel model : {StretchModel::Triarap, StretchModel::TriarapNorm, StretchModel::Fem}) {
     ClothMaterial mat;
     mat.stretch = model;
     mat.layer = 7;
@@ -54,16 +54,16 @@ Scene every_kind_scene() {
   st.gravity = {0.1, -third, 0};
   st.wind = {1e-17, 0, -2};
   st.velocity_damping = 0.5;
-  st.self_collision = false;
-  st.static_friction = third;
-  st.dynamic_friction = 0.25;
-  st.layer_shock = 2;
-  st.parallel_edge_degrees = 5;
-  st.impact_zone_smoothing = false;
-  st.impact_zone_epsilon = 0.2;
-  st.impact_zone_sweeps = 3;
-  st.contact_solver = ContactSolver::Jacobi;
-  st.ccd_span = SolverSettings{}.ccd_span == CcdSpan::Pass ? CcdSpan::Substep : CcdSpan::Pass;
+  st.collision.self_collision = false;
+  st.collision.static_friction = third;
+  st.collision.dynamic_friction = 0.25;
+  st.collision.layer_shock = 2;
+  st.collision.parallel_edge_degrees = 5;
+  st.collision.impact_zone_smoothing = false;
+  st.collision.impact_zone_epsilon = 0.2;
+  st.collision.impact_zone_sweeps = 3;
+  st.collision.contact_solver = ContactSolver::Jacobi;
+  st.collision.ccd_span = CollisionSettings{}.ccd_span == CcdSpan::Pass ? CcdSpan::Substep : CcdSpan::Pass;
   st.tether_stretch = 1.25;
   st.profile = true;
   return s;
@@ -162,16 +162,17 @@ void expect_identical(const Scene& a, const Scene& b) {
     EXPECT_TRUE(same(x.thickness, y.thickness) && same(x.friction, y.friction)) << "collider " << i;
   }
   const SolverSettings &s = a.settings, &t = b.settings;
+  const CollisionSettings &sc = s.collision, &tc = t.collision;
   EXPECT_TRUE(same(s.fps, t.fps) && same(s.gravity, t.gravity) && same(s.wind, t.wind) &&
-              same(s.velocity_damping, t.velocity_damping) && same(s.static_friction, t.static_friction) &&
-              same(s.dynamic_friction, t.dynamic_friction) && same(s.layer_shock, t.layer_shock) &&
-              same(s.parallel_edge_degrees, t.parallel_edge_degrees) &&
-              same(s.impact_zone_epsilon, t.impact_zone_epsilon) && same(s.tether_stretch, t.tether_stretch));
+              same(s.velocity_damping, t.velocity_damping) && same(sc.static_friction, tc.static_friction) &&
+              same(sc.dynamic_friction, tc.dynamic_friction) && same(sc.layer_shock, tc.layer_shock) &&
+              same(sc.parallel_edge_degrees, tc.parallel_edge_degrees) &&
+              same(sc.impact_zone_epsilon, tc.impact_zone_epsilon) && same(s.tether_stretch, t.tether_stretch));
   EXPECT_TRUE(s.frame_start == t.frame_start && s.frame_end == t.frame_end && s.substeps == t.substeps &&
               s.iterations == t.iterations && s.collision_passes == t.collision_passes &&
-              s.smoothing_iterations == t.smoothing_iterations && s.impact_zone_sweeps == t.impact_zone_sweeps &&
-              s.self_collision == t.self_collision && s.impact_zone_smoothing == t.impact_zone_smoothing &&
-              s.contact_solver == t.contact_solver && s.ccd_span == t.ccd_span && s.profile == t.profile);
+              s.smoothing_iterations == t.smoothing_iterations && sc.impact_zone_sweeps == tc.impact_zone_sweeps &&
+              sc.self_collision == tc.self_collision && sc.impact_zone_smoothing == tc.impact_zone_smoothing &&
+              sc.contact_solver == tc.contact_solver && sc.ccd_span == tc.ccd_span && s.profile == t.profile);
   EXPECT_TRUE(differing_settings(s, t).empty());
 }
 
@@ -219,8 +220,8 @@ TEST(WEFT_TEST_SUITE, hdf5_scene_round_trip_of_an_empty_animation_and_no_collide
 TEST(WEFT_TEST_SUITE, hdf5_scene_contact_solver_and_ccd_span_attributes) {
   const ScratchDir dir("solver_span");
   Scene s = make_builtin_scene("hanging-sheet", {3});
-  s.settings.contact_solver = ContactSolver::Jacobi;
-  s.settings.ccd_span = CcdSpan::Pass;
+  s.settings.collision.contact_solver = ContactSolver::Jacobi;
+  s.settings.collision.ccd_span = CcdSpan::Pass;
   const std::string path = dir.file("sheet.h5");
   write_scene(s, path);
   {
@@ -234,8 +235,8 @@ TEST(WEFT_TEST_SUITE, hdf5_scene_contact_solver_and_ccd_span_attributes) {
     ASSERT_GE(H5Adelete_by_name(edit.file.get(), "/settings", "ccd_per_pass", H5P_DEFAULT), 0);
   }
   const SolverSettings older = read_scene(path).settings;
-  EXPECT_EQ(older.contact_solver, ContactSolver::GaussSeidel);
-  EXPECT_EQ(older.ccd_span, CcdSpan::Substep);
+  EXPECT_EQ(older.collision.contact_solver, ContactSolver::GaussSeidel);
+  EXPECT_EQ(older.collision.ccd_span, CcdSpan::Substep);
 }
 
 TEST(WEFT_TEST_SUITE, hdf5_scene_errors_name_the_file_and_the_dataset) {

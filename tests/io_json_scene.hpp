@@ -70,7 +70,7 @@ Scene expected_scene() {
   add_cloth_piece(s, {{0, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}}, {{0, 1, 2}, {0, 2, 3}}, flag);
   s.points.stopped[0] = s.points.stopped[3] = 1;
   ClothMaterial sheet;
-  sheet.stretch = StretchModel::TriarapNormalized;
+  sheet.stretch = StretchModel::TriarapNorm;
   sheet.stretch_stiffness = 1e4;
   sheet.compress_stiffness = 100;
   sheet.stretch_damping = 0.01;
@@ -104,14 +104,14 @@ TEST(WEFT_TEST_SUITE, io_json_scene_gives_the_expected_scene) {
   EXPECT_TRUE(st.gravity == (Vec3{0, -10, 0}));
   EXPECT_TRUE(st.wind == (Vec3{1, 0, 0}));
   EXPECT_EQ(st.velocity_damping, 0.5);
-  EXPECT_FALSE(st.impact_zone_smoothing);
-  EXPECT_EQ(st.contact_solver, ContactSolver::Jacobi);
-  EXPECT_EQ(st.ccd_span, CcdSpan::Substep);
+  EXPECT_FALSE(st.collision.impact_zone_smoothing);
+  EXPECT_EQ(st.collision.contact_solver, ContactSolver::Jacobi);
+  EXPECT_EQ(st.collision.ccd_span, CcdSpan::Substep);
   EXPECT_EQ(st.tether_stretch, 1.1);
-  EXPECT_EQ(st.contact_model, ContactModel::Ccd);
-  EXPECT_EQ(st.early_pass_fraction, 0.05);
-  EXPECT_EQ(st.max_early_passes, 2);
-  EXPECT_FALSE(st.pair_refresh);
+  EXPECT_EQ(st.collision.contact_model, ContactModel::Ccd);
+  EXPECT_EQ(st.collision.early_pass_fraction, 0.05);
+  EXPECT_EQ(st.collision.max_early_passes, 2);
+  EXPECT_FALSE(st.collision.pair_refresh);
 
   const ClothPoints &p = s.points, &q = want.points;
   ASSERT_EQ(p.size(), 4u + 15u);
@@ -295,7 +295,7 @@ TEST(WEFT_TEST_SUITE, a_cloth_too_thick_for_its_triangles_gets_a_warning) {
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].find("cloth piece 0"), std::string::npos) << w[0];
   EXPECT_NE(w[0].find("0.00283 m"), std::string::npos) << w[0];
-  s.settings.self_collision = false;  // no self contacts, nothing to warn about
+  s.settings.collision.self_collision = false;  // no self contacts, nothing to warn about
   EXPECT_TRUE(thickness_warnings(s).empty());
 }
 

@@ -16,7 +16,7 @@ TEST(WEFT_TEST_SUITE, every_constraint_kind_hash_is_pinned) {
   using Exec = WEFT_TEST_EXECSPACE;
   uint64_t all = 0;
   for (auto model : {weft::StretchModel::Distance, weft::StretchModel::Triarap,
-                     weft::StretchModel::TriarapNormalized, weft::StretchModel::Fem}) {
+                     weft::StretchModel::TriarapNorm, weft::StretchModel::Fem}) {
     weft::ClothMaterial mat;
     mat.stretch = model;
     mat.stretch_stiffness = 1e5;

@@ -19,7 +19,7 @@ inline Scene sheet_scene(int res, const ClothMaterial& mat = {}, real y = 1.0) {
   Scene s = empty_scene("test-sheet");
   const io::Mesh g = io::grid(res, res, {-0.5, y, -0.5}, {1, 0, 0}, {0, 0, 1});
   add_cloth_piece(s, g.x, g.tris, mat);
-  s.settings.self_collision = false;  // solver tests: no collision stage
+  s.settings.collision.self_collision = false;  // solver tests: no collision stage
   return s;
 }
 

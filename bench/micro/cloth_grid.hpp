@@ -2,8 +2,8 @@
 // rest of weft_io would bring HDF5 and Cairo).
 #pragma once
 #include "constraints/vellum_cloth.hpp"
-#include "core/scene.hpp"
 #include "io/procedural.hpp"
+#include "scene/scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +30,7 @@ inline Scene hanging_sheet(long triangles) {
   add_cloth_piece(s, g.x, g.tris, ClothMaterial{});
   s.points.stopped[0] = 1;
   s.points.stopped[res] = 1;
-  s.settings.self_collision = false;
+  s.settings.collision.self_collision = false;
   return s;
 }
 

@@ -1,4 +1,4 @@
-// One constraint iteration of the XPBD solver: Solver::gauss_seidel_sweep (core/solver.hpp), one kernel
+// One constraint iteration of the XPBD solver: Solver::gauss_seidel_sweep (solver/solver.hpp), one kernel
 // launch per colour and row kind over every distance and bend row, on the hanging sheet (cloth_grid.hpp) one substep
 // after the start, so positions, lambdas and x_start are those of a running solve. Counter `bytes`: what a
 // sweep must move at the least (every packed row and lambda once, every point's position, start position and
@@ -7,7 +7,7 @@
 #pragma once
 #include "bench/micro/bench_common.hpp"
 #include "bench/micro/cloth_grid.hpp"
-#include "core/solver.hpp"
+#include "solver/solver.hpp"
 
 namespace {
 

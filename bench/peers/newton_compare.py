@@ -8,7 +8,7 @@ ms/frame, the triangle strain (max and 99th percentile) and the intersections of
 `weft check-intersections mesh.obj`, so both sides are judged by the same discrete triangle-triangle test
 (adjacent triangles judged by their shared vertices).
 
-How weft's scenes (io/builtin_scenes.cpp, constraints/vellum_cloth.hpp, core/scene.hpp) map to Newton:
+How weft's scenes (io/builtin_scenes.cpp, constraints/vellum_cloth.hpp, scene/scene.hpp) map to Newton:
   geometry   the same grid: (res+1)^2 points, 2 res^2 triangles with the same alternating diagonals, Y up.
              hanging-sheet: 1 m x 1 m at y = 1; twist: 1 m x 1 m at y = 1.
   pins       hanging-sheet: points 0 and res (two corners of one edge), fixed (Newton: particle not ACTIVE).

@@ -72,7 +72,7 @@ def file_id(path):
     return h.hexdigest()[:12]
 
 
-# `weft info` names each schedule of core/schedules.hpp (apps/cmd_info.cpp).
+# `weft info` names each schedule of scene/schedules.hpp (apps/cmd_info.cpp).
 SCHEDULE_LINE = re.compile(r"^schedule (\S+): substeps (\d+), iterations (\d+), collision passes (\d+)$")
 
 

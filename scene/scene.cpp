@@ -1,8 +1,8 @@
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include "core/error.hpp"
-#include "core/mesh_checks.hpp"
 #include "core/topology.hpp"
+#include "scene/mesh_checks.hpp"
 
 #include <cstdio>
 #include <sstream>
@@ -128,8 +128,8 @@ void validate_scene(const Scene& s) {
   if (!(st.fps > 0) || st.substeps < 1 || st.iterations < 0 || st.collision_passes < 0 || st.smoothing_iterations < 0 ||
       st.frame_end < st.frame_start)
     fail(s, "invalid solver settings (fps > 0, substeps >= 1, iterations/passes >= 0, frame_end >= frame_start)");
-  if (!(st.chebyshev_rho >= 0 && st.chebyshev_rho < 1) || st.chebyshev_delay < 1 || st.interleaved_jacobi < 0)
-    fail(s, "invalid acceleration settings (chebyshev_rho in [0, 1), chebyshev_delay >= 1, interleaved_jacobi >= 0)");
+  if (!(st.chebyshev_rho >= 0 && st.chebyshev_rho < 1) || st.chebyshev_delay < 1)
+    fail(s, "invalid Chebyshev settings (chebyshev_rho in [0, 1), chebyshev_delay >= 1)");
   if (!(st.tether_stretch == 0 || (st.tether_stretch >= 1 && st.tether_stretch < 1e6)))
     fail(s, "tether stretch " + std::to_string(st.tether_stretch) + " is neither 0 (no tethers) nor at least 1 "
             "(a tether shorter than the cloth's rest path would fight its edges)");
@@ -137,7 +137,7 @@ void validate_scene(const Scene& s) {
 
 std::vector<std::string> thickness_warnings(const Scene& s) {
   std::vector<std::string> out;
-  if (!s.settings.self_collision) return out;
+  if (!s.settings.collision.self_collision) return out;
   struct Worst { long tri = -1, count = 0; real ratio = 0, height = 0, thickness = 0; };
   std::vector<Worst> worst;
   for (size_t t = 0; t < s.triangles.size(); ++t) {

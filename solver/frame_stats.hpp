@@ -21,7 +21,7 @@ struct FrameStats {
   long failsafe_rounds = 0;     // its rounds (each a pass over the candidate pairs), over the frame's substeps
   long failsafe_pinned = 0;     // of failsafe_points, pinned points held back (they trail their animation)
   long collision_queries = 0;   // proximity contacts: passes that queried pairs afresh (the others kept the
-                                // last query's self pairs: SolverSettings::pair_refresh)
+                                // last query's self pairs: CollisionSettings::pair_refresh)
   long early_passes = 0;        // passes run early because many points were cut back to their bounds
   long points_cut_back = 0;     // points cut back to their displacement bounds, summed over the truncations
   real max_pin_lag = 0;         // m, largest distance of a pinned point from its animated target

@@ -1,7 +1,7 @@
 // The paper's three solver schedules by name: the one table that `weft run --schedule`, `weft bench
 // --schedules paper` and `weft info` (which the report scripts read) take them from.
 #pragma once
-#include "core/scene.hpp"
+#include "scene/scene.hpp"
 
 #include <string>
 

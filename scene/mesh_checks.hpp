@@ -1,4 +1,4 @@
-// The checks validate_scene (core/scene.hpp) makes of the cloth's positions and triangles, for a mesh that is
+// The checks validate_scene (scene/scene.hpp) makes of the cloth's positions and triangles, for a mesh that is
 // not a scene: the frames of a cache or an OBJ file whose intersections are counted, say.
 #pragma once
 #include "core/vec.hpp"

@@ -2,45 +2,15 @@
 // semantics, animated targets and colliders, solver settings. Built by scene generators and readers,
 // validated by validate_scene(), then uploaded once to the device by the solver.
 #pragma once
-#include "constraints/xpbd.hpp"
 #include "core/vec.hpp"
+#include "scene/collision_settings.hpp"
+#include "scene/material.hpp"
 
 #include <array>
-#include <optional>
 #include <string>
 #include <vector>
 
 namespace weft {
-
-// How contacts are found and kept (docs/collisions.md): proximity queries with per-point displacement
-// bounds (no crossing by construction), or the paper's CCD every pass with the crossing fail-safe.
-enum class ContactModel { Proximity = 0, Ccd = 1 };
-inline const char* contact_model_name(ContactModel m) { return m == ContactModel::Ccd ? "ccd" : "proximity"; }
-inline std::optional<ContactModel> parse_contact_model(const std::string& s) {
-  if (s == "proximity") return ContactModel::Proximity;
-  if (s == "ccd") return ContactModel::Ccd;
-  return std::nullopt;
-}
-
-// How the ccd model projects contacts (--contact-solver): Gauss-Seidel by colours, or Jacobi-style (each point
-// moves by the average of its contacts' corrections; the proximity model always averages).
-enum class ContactSolver { GaussSeidel = 0, Jacobi = 1 };
-inline const char* contact_solver_name(ContactSolver s) { return s == ContactSolver::Jacobi ? "jacobi" : "gauss-seidel"; }
-inline std::optional<ContactSolver> parse_contact_solver(const std::string& s) {
-  if (s == "gauss-seidel") return ContactSolver::GaussSeidel;
-  if (s == "jacobi") return ContactSolver::Jacobi;
-  return std::nullopt;
-}
-
-// The motion a collision pass of the ccd model tests (--ccd-span): the whole substep's, or, for a pass after
-// the first of its substep, only the motion since the previous pass.
-enum class CcdSpan { Substep = 0, Pass = 1 };
-inline const char* ccd_span_name(CcdSpan s) { return s == CcdSpan::Pass ? "pass" : "substep"; }
-inline std::optional<CcdSpan> parse_ccd_span(const std::string& s) {
-  if (s == "substep") return CcdSpan::Substep;
-  if (s == "pass") return CcdSpan::Pass;
-  return std::nullopt;
-}
 
 struct SolverSettings {
   real fps = 24;
@@ -49,31 +19,15 @@ struct SolverSettings {
   int iterations = 20;                   // Gauss-Seidel constraint iterations per substep
   int collision_passes = 2;              // per substep, spread evenly over the iterations
   int smoothing_iterations = 0;          // Jacobi passes after Gauss-Seidel (Vellum "smoothing iterations")
-  real chebyshev_rho = 0;                // 0: off; else Chebyshev acceleration of a substep's iterations with this
-                                         // estimate of their convergence rate (Wang 2015; docs/solver.md)
+  real chebyshev_rho = 0.95;             // Chebyshev acceleration of a substep's iterations, with this estimate
+                                         // of their convergence rate; 0: off (Wang 2015; docs/solver.md)
   int chebyshev_delay = 4;               // iterations of a substep before the acceleration starts (>= 1)
-  int interleaved_jacobi = 0;            // Jacobi sweeps after every Gauss-Seidel sweep
   real tether_stretch = 0;               // 0: no tethers; else a point stays within this times its path length
                                          // at rest from the nearest hard-pinned point (constraints/tether.hpp)
   Vec3 gravity{0, -9.81, 0};             // m/s^2
   Vec3 wind{0, 0, 0};                    // constant acceleration, m/s^2
   real velocity_damping = 0;             // 1/s: v <- max(0, 1 - damping h) v + h a each substep
-  // Collisions (collision/): self contact among all cloth pieces and layers, contact with colliders.
-  bool self_collision = true;
-  real static_friction = 0.5;            // Vellum "static threshold", times the points' friction scales
-  real dynamic_friction = 0.5;           // Vellum "dynamic scale", times the points' dynamicfriction scales
-  real layer_shock = 4;                  // lower layers act this much heavier in contacts with higher ones
-  real parallel_edge_degrees = 10;       // self edge-edge pairs closer to parallel than this are dropped
-  bool impact_zone_smoothing = true;     // paper 2.3: Laplacian smoothing of velocities in unresolved contacts
-  real impact_zone_epsilon = 0.1;        // contacts with C < -epsilon * thickness are smoothed
-  int impact_zone_sweeps = 4;
-  ContactModel contact_model = ContactModel::Proximity;
-  real early_pass_fraction = 0.01;       // proximity: a pass runs early when more of the moving points were cut back
-  int max_early_passes = 4;              // proximity: early passes per substep at most
-  bool pair_refresh = true;              // proximity: a pass may keep the last full query's self pairs
-  bool collision_failsafe = true;        // ccd model: move back points whose motion would cross cloth (collision/crossing_failsafe.hpp)
-  ContactSolver contact_solver = ContactSolver::GaussSeidel;  // ccd model
-  CcdSpan ccd_span = CcdSpan::Pass;                           // ccd model
+  CollisionSettings collision;           // the collision stage's (collision/collision_handler.hpp)
   bool profile = false;                  // time each stage (fences between stages)
 };
 

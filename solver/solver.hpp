@@ -8,14 +8,14 @@
 #include "constraints/triangle_strain.hpp"
 #include "core/colouring.hpp"
 #include "core/error.hpp"
-#include "core/frame_stats.hpp"
 #include "core/hash.hpp"
 #include "core/kokkos_compat.hpp"
 #include "core/reduce.hpp"
-#include "core/scene.hpp"
-#include "core/solver_kernels.hpp"
 #include "core/solver_state.hpp"
 #include "core/stage_timer.hpp"
+#include "scene/scene.hpp"
+#include "solver/frame_stats.hpp"
+#include "solver/solver_kernels.hpp"
 
 #include <Kokkos_Core.hpp>
 #include <algorithm>
@@ -182,7 +182,6 @@ class Solver {
           Kokkos::parallel_for("weft::chebyshev_save", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
                                kernels::ChebyshevSave<Mem>{state_.x, cheb_xk_, cheb_xkm1_});
         gauss_seidel_sweep(h);
-        for (int j = 0; j < st_.interleaved_jacobi; ++j) jacobi_sweep(h);
         if (omega != 1)
           Kokkos::parallel_for("weft::chebyshev_blend", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
                                kernels::ChebyshevBlend<Mem>{state_.x, cheb_xkm1_, state_.w, omega});
@@ -452,7 +451,7 @@ class Solver {
     row_scratch_ = View<real*>("weft::row_scratch", std::max(nr, tri_rest_.extent(0)));
     // Jacobi gather lists: for each point, the (row, slot) entries that move it, in colour order (the
     // order of the sum, so it is kept apart from the storage order).
-    if (st_.smoothing_iterations > 0 || st_.interleaved_jacobi > 0) {
+    if (st_.smoothing_iterations > 0) {
       std::vector<size_t> by_colour(nr);
       std::vector<long> colour_fill(size_t(nc) + 1, 0);
       for (size_t r = 0; r < nr; ++r) ++colour_fill[size_t(col.colour[r]) + 1];
