@@ -30,7 +30,8 @@ void print_settings(const SolverSettings& s) {
   std::cout << "settings: frames " << s.frame_start << "-" << s.frame_end << " at " << s.fps << " fps, substeps "
             << s.substeps << ", iterations " << s.iterations << ", collision passes " << s.collision_passes
             << ", smoothing iterations " << s.smoothing_iterations << ", Chebyshev "
-            << (s.chebyshev_rho > 0 ? "rate " + std::to_string(s.chebyshev_rho).substr(0, 4) + " after " +
+            << (s.chebyshev_rho > 0 && c.contact_model == ContactModel::Ccd ? std::string("off (ccd model)")
+                : s.chebyshev_rho > 0 ? "rate " + std::to_string(s.chebyshev_rho).substr(0, 4) + " after " +
                                           std::to_string(s.chebyshev_delay) + " iterations"
                                     : std::string("off"))
             << "\n"

@@ -205,7 +205,10 @@ class Solver {
     if (collision_) timed("weft::impact_zones", prof_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });
   }
 
-  bool chebyshev_on() const { return st_.chebyshev_rho > 0; }
+  // Not with the ccd model: it stays the paper's solver, for comparison (docs/solver.md).
+  bool chebyshev_on() const {
+    return st_.chebyshev_rho > 0 && st_.collision.contact_model == ContactModel::Proximity;
+  }
 
   // The Chebyshev weight of iteration `it` of a substep: 1 before the delay S, then 2 / (2 - rho^2) at S and
   // 4 / (4 - rho^2 omega) after (Wang 2015), computed on the host so that every backend blends by the same bits.
@@ -366,7 +369,7 @@ class Solver {
     state_.w = upload(w, "weft::w");
     mass_ = upload(p.mass, "weft::mass");
     scratch_ = View<real*>("weft::scratch", n);
-    if (st_.chebyshev_rho > 0) {
+    if (chebyshev_on()) {
       cheb_xk_ = View<Vec3*>("weft::chebyshev_xk", n);
       cheb_xkm1_ = View<Vec3*>("weft::chebyshev_xkm1", n);
     }
