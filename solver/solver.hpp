@@ -182,9 +182,14 @@ class Solver {
           Kokkos::parallel_for("weft::chebyshev_save", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
                                kernels::ChebyshevSave<Mem>{state_.x, cheb_xk_, cheb_xkm1_});
         gauss_seidel_sweep(h);
-        if (omega != 1)
+        if (omega != 1) {
           Kokkos::parallel_for("weft::chebyshev_blend", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
                                kernels::ChebyshevBlend<Mem>{state_.x, cheb_xkm1_, state_.w, omega});
+          // Tethers are limits, not targets: the blend must not leave a point past its tether.
+          if (tethers_.extent(0) > 0)
+            Kokkos::parallel_for("weft::project_tethers", Kokkos::RangePolicy<Exec>(exec_, 0, tethers_.extent(0)),
+                                 kernels::ProjectTethers<Mem>{tethers_, state_.x});
+        }
       });
       if (!collision_) continue;
       timed("weft::contacts", prof_.seconds_contacts, [&] { collision_->project(state_, h); });

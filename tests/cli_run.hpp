@@ -191,6 +191,14 @@ void expect_recorded_and_resumed(Cli& weft, const ScratchDir& dir, const Switch&
   EXPECT_NE(weft.output.find(s.option), std::string::npos) << weft.output;
 }
 
+TEST(WEFT_TEST_SUITE, cli_chebyshev_setting_is_recorded_and_resumed) {
+  WEFT_NEED_CLI();
+  const ScratchDir dir("cli_chebyshev");
+  Cli weft(dir);
+  expect_recorded_and_resumed(weft, dir, {kSheet, "--set chebyshev_rho=0.95", "Chebyshev rate 0.95 after 4 iterations",
+                                          "chebyshev_rho", "--set chebyshev_rho=1.5", "chebyshev_rho"});
+}
+
 TEST(WEFT_TEST_SUITE, cli_self_collision_switch_is_recorded_and_resumed) {
   WEFT_NEED_CLI();
   const ScratchDir dir("cli_self_collision");
