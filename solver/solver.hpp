@@ -7,6 +7,7 @@
 #include "constraints/build_tethers.hpp"
 #include "constraints/triangle_strain.hpp"
 #include "core/colouring.hpp"
+#include "core/device_copy.hpp"
 #include "core/error.hpp"
 #include "core/hash.hpp"
 #include "core/kokkos_compat.hpp"
@@ -85,8 +86,8 @@ class Solver {
     if (x.size() != state_.x.extent(0) || v.size() != state_.v.extent(0))
       throw InputError("saved state has " + std::to_string(x.size()) + " points, the scene " +
                        std::to_string(state_.x.extent(0)));
-    Kokkos::deep_copy(state_.x, upload(x, "weft::x_in"));
-    Kokkos::deep_copy(state_.v, upload(v, "weft::v_in"));
+    copy_to_device(state_.x, x);
+    copy_to_device(state_.v, v);
     frame_ = frame;
     // Animated goals and colliders at the new frame, as an uninterrupted run would have them.
     const real t = real(frame_ - st_.frame_start);
@@ -327,27 +328,6 @@ class Solver {
   // Fraction of its lag a pinned point held back (by the ccd model's fail-safe, or by its bound where the
   // cloth jams) closes per substep before the bounds apply.
   static constexpr real kPinCatchUp = 0.25;
-  template <class V>
-  std::vector<typename V::non_const_value_type> to_host(const V& d) const {
-    auto m = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d);
-    return std::vector<typename V::non_const_value_type>(m.data(), m.data() + m.extent(0));
-  }
-  template <class T>
-  View<T*> upload(const std::vector<T>& h, const char* label) const {
-    View<T*> d(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(label)), h.size());
-    Kokkos::View<const T*, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> hv(h.data(), h.size());
-    Kokkos::deep_copy(d, hv);
-    return d;
-  }
-  View<Vec3**> upload_frames(const Animation& a, const char* label) const {
-    const size_t nf = a.frames.size(), n = nf ? a.frames[0].size() : 0;
-    View<Vec3**> d(std::string(label), nf, n);
-    auto m = Kokkos::create_mirror_view(d);
-    for (size_t f = 0; f < nf; ++f)
-      for (size_t i = 0; i < n; ++i) m(f, i) = a.frames[f][i];
-    Kokkos::deep_copy(d, m);
-    return d;
-  }
 
   void upload_points(const Scene& sc) {
     const ClothPoints& p = sc.points;
@@ -360,11 +340,11 @@ class Solver {
       w[i] = (p.mass[i] > 0 && !(p.stopped[i] & 1) && !kinematic[i]) ? 1 / p.mass[i] : 0.0;
       movable_ += w[i] > 0;
     }
-    state_.x = upload(p.position, "weft::x");
-    state_.v = upload(p.velocity, "weft::v");
+    state_.x = upload<Mem>(p.position, "weft::x");
+    state_.v = upload<Mem>(p.velocity, "weft::v");
     state_.x_start = View<Vec3*>("weft::x_start", n);
-    state_.w = upload(w, "weft::w");
-    mass_ = upload(p.mass, "weft::mass");
+    state_.w = upload<Mem>(w, "weft::w");
+    mass_ = upload<Mem>(p.mass, "weft::mass");
     scratch_ = View<real*>("weft::scratch", n);
     if (st_.chebyshev_rho > 0) {
       cheb_xk_ = View<Vec3*>("weft::chebyshev_xk", n);
@@ -374,12 +354,12 @@ class Solver {
   }
 
   void upload_animation(const Scene& sc) {
-    target_frames_ = upload_frames(sc.pin_targets, "weft::target_frames");
+    target_frames_ = upload_frames<Mem>(sc.pin_targets.frames, "weft::target_frames");
     targets_ = View<Vec3*>("weft::targets", target_frames_.extent(1));
     targets_before_ = View<Vec3*>("weft::targets_before", target_frames_.extent(1));
     kernels::interpolate_animation(exec_, target_frames_, targets_, 0.0);
-    kin_point_ = upload(sc.kinematic_point, "weft::kin_point");
-    kin_target_ = upload(sc.kinematic_target, "weft::kin_target");
+    kin_point_ = upload<Mem>(sc.kinematic_point, "weft::kin_point");
+    kin_target_ = upload<Mem>(sc.kinematic_target, "weft::kin_target");
     // All colliders' vertices, concatenated; frames padded by holding each collider's last frame.
     Animation all;
     size_t nf = 0;
@@ -395,7 +375,7 @@ class Solver {
       }
       offset += int(c.motion.frames[0].size());
     }
-    collider_frames_ = upload_frames(all, "weft::collider_frames");
+    collider_frames_ = upload_frames<Mem>(all.frames, "weft::collider_frames");
     state_.collider_x = View<Vec3*>("weft::collider_x", collider_frames_.extent(1));
     state_.collider_x_start = View<Vec3*>("weft::collider_x_start", collider_frames_.extent(1));
     kernels::interpolate_animation(exec_, collider_frames_, state_.collider_x, 0.0);
@@ -441,13 +421,13 @@ class Solver {
       if (added) materials.push_back(m);
       material[r] = it->second;
     }
-    materials_ = upload(materials, "weft::materials");
+    materials_ = upload<Mem>(materials, "weft::materials");
     std::vector<size_t> by_place(nr);
     for (size_t r = 0; r < nr; ++r) by_place[size_t(place[r])] = r;
     upload_packed(rows, material, by_place, std::make_integer_sequence<int, kRowKinds>{});
-    tethers_ = upload(build_tethers(sc, w_host_), "weft::tethers");
+    tethers_ = upload<Mem>(build_tethers(sc, w_host_), "weft::tethers");
     lambda_ = View<real*>("weft::lambda", nr);
-    tri_rest_ = upload(triangle_rest_shapes(sc), "weft::triangle_rest");
+    tri_rest_ = upload<Mem>(triangle_rest_shapes(sc), "weft::triangle_rest");
     row_scratch_ = View<real*>("weft::row_scratch", std::max(nr, tri_rest_.extent(0)));
     // Jacobi gather lists: for each point, the (row, slot) entries that move it, in colour order (the
     // order of the sum, so it is kept apart from the storage order).
@@ -465,8 +445,8 @@ class Solver {
       std::vector<long> pos(off.begin(), off.end() - 1);
       for (size_t r : by_colour)
         for (int k = 0; k < rows[r].n; ++k) slots[pos[rows[r].idx[k]]++] = long(k) * long(nr) + place[r];
-      point_slot_offset_ = upload(off, "weft::point_slot_offset");
-      point_slot_ = upload(slots, "weft::point_slot");
+      point_slot_offset_ = upload<Mem>(off, "weft::point_slot_offset");
+      point_slot_ = upload<Mem>(slots, "weft::point_slot");
       row_delta_ = View<Vec3*>("weft::row_delta", 5 * nr);
     }
   }
@@ -483,7 +463,7 @@ class Solver {
         const size_t r = by_place[size_t(p)];
         packed.push_back(pack_row<Kind>(rows[r], material[r]));
       }
-      std::get<Kind>(packed_) = upload(packed, "weft::rows");
+      std::get<Kind>(packed_) = upload<Mem>(packed, "weft::rows");
       row_storage_bytes_ += long(packed.size() * sizeof(PackedRow<Kind>));
     };
     (one(std::integral_constant<int, K>{}), ...);
