@@ -59,10 +59,38 @@ class Solver {
   long row_storage_bytes() const { return row_storage_bytes_; }
   void set_collision_stage(std::unique_ptr<CollisionStage<Exec>> c) { collision_ = std::move(c); }
 
+  // Streamed colliders: every collider vertex, concatenated in the scene's collider order, at the end of the
+  // frame the next step_frame() steps; its substeps move the colliders linearly from where they are to
+  // there. From the first call on, the scene's collider animation is no longer used: a frame stepped without
+  // a new call keeps the colliders where the last one put them.
+  void set_collider_frame(const std::vector<Vec3>& x) {
+    const size_t n = state_.collider_x.extent(0);
+    if (x.size() != n)
+      throw InputError("collider frame has " + std::to_string(x.size()) + " vertices, the scene's colliders " +
+                       std::to_string(n));
+    stream_colliders();
+    copy_to_device(collider_frame_end_, x);
+  }
+  // The same for collider `collider` of the scene alone; the others keep their last streamed positions.
+  void set_collider_frame(int collider, const std::vector<Vec3>& x) {
+    const int nc = int(collider_offset_.size());
+    if (collider < 0 || collider >= nc)
+      throw InputError("collider " + std::to_string(collider) + " does not exist: the scene has " + std::to_string(nc) +
+                       " colliders");
+    const long begin = collider_offset_[size_t(collider)];
+    const long end = collider + 1 < nc ? collider_offset_[size_t(collider) + 1] : long(state_.collider_x.extent(0));
+    if (long(x.size()) != end - begin)
+      throw InputError("frame of collider " + std::to_string(collider) + " has " + std::to_string(x.size()) +
+                       " vertices, the collider " + std::to_string(end - begin));
+    stream_colliders();
+    copy_to_device(Kokkos::subview(collider_frame_end_, Kokkos::make_pair(begin, end)), x);
+  }
+
   // Advances from frame() to frame() + 1.
   FrameStats step_frame() {
     const auto t0 = std::chrono::steady_clock::now();
     prof_ = FrameStats{};
+    if (colliders_streamed_) Kokkos::deep_copy(exec_, collider_frame_start_, state_.collider_x);
     for (int s = 0; s < st_.substeps; ++s) substep(s);
     ++frame_;
     exec_.fence();
@@ -89,10 +117,12 @@ class Solver {
     copy_to_device(state_.x, x);
     copy_to_device(state_.v, v);
     frame_ = frame;
-    // Animated goals and colliders at the new frame, as an uninterrupted run would have them.
+    // Animated goals and colliders at the new frame, as an uninterrupted run would have them; streamed
+    // colliders follow the scene's animation again until the next set_collider_frame.
     const real t = real(frame_ - st_.frame_start);
     kernels::interpolate_animation(exec_, target_frames_, targets_, t);
     kernels::interpolate_animation(exec_, collider_frames_, state_.collider_x, t);
+    colliders_streamed_ = false;
   }
   std::vector<Vec3> velocities() const { return to_host(state_.v); }
 
@@ -153,7 +183,15 @@ class Solver {
   void substep(int s) {
     const real h = 1 / (st_.fps * st_.substeps);
     const real t_end = real(frame_ - st_.frame_start) + real(s + 1) / real(st_.substeps);
-    if (collider_frames_.extent(0) > 0) {
+    if (colliders_streamed_) {
+      // The frame's start and end stand as stored frames f and f + 1, so that t_end picks and weighs them as
+      // it does a full animation's frames: the same bits where they hold the same positions.
+      const long f = frame_ - st_.frame_start;
+      const kernels::FramePair p = kernels::frame_pair(t_end, f + 2);
+      Kokkos::deep_copy(exec_, state_.collider_x_start, state_.collider_x);
+      kernels::interpolate(exec_, p.f0 == f ? collider_frame_start_ : collider_frame_end_,
+                           p.f1 == f ? collider_frame_start_ : collider_frame_end_, p.a, state_.collider_x);
+    } else if (collider_frames_.extent(0) > 0) {
       Kokkos::deep_copy(exec_, state_.collider_x_start, state_.collider_x);
       kernels::interpolate_animation(exec_, collider_frames_, state_.collider_x, t_end);
     }
@@ -382,6 +420,18 @@ class Solver {
     Kokkos::deep_copy(state_.collider_x_start, state_.collider_x);
   }
 
+  // Switches the colliders to streamed frames, the end of the next frame where they are now until set.
+  void stream_colliders() {
+    if (colliders_streamed_) return;
+    const size_t n = state_.collider_x.extent(0);
+    if (collider_frame_end_.extent(0) != n) {
+      collider_frame_start_ = View<Vec3*>("weft::collider_frame_start", n);
+      collider_frame_end_ = View<Vec3*>("weft::collider_frame_end", n);
+    }
+    Kokkos::deep_copy(collider_frame_end_, state_.collider_x);
+    colliders_streamed_ = true;
+  }
+
   void upload_rows(const Scene& sc) {
     const std::vector<Row> rows = build_rows(sc, collider_offset_);
     const size_t n = sc.points.size(), nr = rows.size();
@@ -490,7 +540,9 @@ class Solver {
   View<Vec3**> target_frames_, collider_frames_;
   View<Vec3*> targets_, targets_before_;  // targets at the end and at the start of the substep
   View<int*> kin_point_, kin_target_;
-  std::vector<int> collider_offset_;
+  std::vector<int> collider_offset_;  // each collider's first vertex in collider_x
+  bool colliders_streamed_ = false;   // set_collider_frame was called: colliders follow the streamed frames
+  View<Vec3*> collider_frame_start_, collider_frame_end_;  // streamed: the colliders at the frame's start and end
   View<Vec3*> row_delta_;
   View<Vec3*> cheb_xk_, cheb_xkm1_;  // Chebyshev: the iterates at the start of this and of the last iteration
   View<long*> point_slot_offset_, point_slot_;
