@@ -23,6 +23,14 @@ class Simulation {
   // Continue from a saved state (positions and velocities at `frame`): --resume gives the same bits as an
   // uninterrupted run, since nothing else carries over from one frame to the next.
   virtual void set_state(int frame, const std::vector<Vec3>& x, const std::vector<Vec3>& v) = 0;
+  // Colliders streamed frame by frame (docs/library.md, "Streamed colliders"): the positions of every collider
+  // vertex, concatenated in the scene's collider order, at the end of the frame the next step_frame() steps,
+  // which moves the colliders linearly to them over its substeps. From the first call on the scene's collider
+  // animation is not used (set_state goes back to it); a frame stepped without a new call keeps the colliders
+  // where they are. Throws InputError for a wrong vertex count.
+  virtual void set_collider_frame(const std::vector<Vec3>& x) = 0;
+  // The same for the scene's collider `collider` alone; the others stay where their last frame put them.
+  virtual void set_collider_frame(int collider, const std::vector<Vec3>& x) = 0;
   virtual int colour_count() const = 0;
   virtual long row_count() const = 0;
   virtual long tether_count() const = 0;

@@ -45,6 +45,8 @@ class SimulationOn final : public Simulation {
   void set_state(int frame, const std::vector<Vec3>& x, const std::vector<Vec3>& v) override {
     solver_.set_state(frame, x, v);
   }
+  void set_collider_frame(const std::vector<Vec3>& x) override { solver_.set_collider_frame(x); }
+  void set_collider_frame(int collider, const std::vector<Vec3>& x) override { solver_.set_collider_frame(collider, x); }
   int colour_count() const override { return solver_.colour_count(); }
   long row_count() const override { return solver_.row_count(); }
   long tether_count() const override { return solver_.tether_count(); }

@@ -23,6 +23,7 @@
 #include "collision/lbvh.hpp"
 #include "collision/ray_triangle.hpp"
 #include "collision/tri_tri.hpp"
+#include "core/device_copy.hpp"
 #include "core/reduce.hpp"
 #include "core/sort.hpp"
 
@@ -288,25 +289,6 @@ struct Displacement {
   }
 };
 
-template <class T, class Mem>
-Kokkos::View<T*, Mem> upload(const std::vector<T>& h, const char* label) {
-  Kokkos::View<T*, Mem> d(std::string(label), h.size());
-  auto m = Kokkos::create_mirror_view(d);
-  for (size_t i = 0; i < h.size(); ++i) m(i) = h[i];
-  Kokkos::deep_copy(d, m);
-  return d;
-}
-
-template <class Mem>
-Kokkos::View<int* [3], Mem> upload_tris(const std::vector<std::array<int, 3>>& t, const char* label) {
-  Kokkos::View<int* [3], Mem> d(std::string(label), t.size());
-  auto m = Kokkos::create_mirror_view(d);
-  for (size_t i = 0; i < t.size(); ++i)
-    for (int k = 0; k < 3; ++k) m(i, k) = t[i][k];
-  Kokkos::deep_copy(d, m);
-  return d;
-}
-
 }  // namespace body_cleaning_detail
 
 // The check on one execution space. Throws InputError for cloth with more than 64 layers.
@@ -321,12 +303,12 @@ class BodyCleaner {
       : scene_(s), settings_(cs), mesh_(make_body_mesh(s.colliders)), body_bvh_(exec_) {
     using namespace body_cleaning_detail;
     const long nv = mesh_.vertices();
-    tris_ = upload_tris<Mem>(mesh_.tris, "weft::body_tris");
-    vt_offsets_ = upload<int, Mem>(mesh_.vt_offsets, "weft::body_vt_offsets");
-    vt_tris_ = upload<int, Mem>(mesh_.vt_tris, "weft::body_vt_tris");
-    closed_ = upload<uint8_t, Mem>(mesh_.closed, "weft::body_closed");
-    vertex_th_ = upload<real, Mem>(mesh_.vertex_thickness, "weft::body_vertex_thickness");
-    triangle_th_ = upload<real, Mem>(mesh_.triangle_thickness, "weft::body_triangle_thickness");
+    tris_ = upload_table<Mem>(mesh_.tris, "weft::body_tris");
+    vt_offsets_ = upload<Mem>(mesh_.vt_offsets, "weft::body_vt_offsets");
+    vt_tris_ = upload<Mem>(mesh_.vt_tris, "weft::body_vt_tris");
+    closed_ = upload<Mem>(mesh_.closed, "weft::body_closed");
+    vertex_th_ = upload<Mem>(mesh_.vertex_thickness, "weft::body_vertex_thickness");
+    triangle_th_ = upload<Mem>(mesh_.triangle_thickness, "weft::body_triangle_thickness");
     for (const Collider& c : s.colliders) max_th_ = max_(max_th_, c.thickness);
     x_ = View<Vec3*>("weft::body_x", nv);
     x_in_ = View<Vec3*>("weft::body_x_in", nv);
@@ -364,9 +346,7 @@ class BodyCleaner {
   long vertices() const { return mesh_.vertices(); }
 
   void set_positions(const std::vector<Vec3>& h) {
-    auto m = Kokkos::create_mirror_view(x_);
-    for (size_t i = 0; i < h.size(); ++i) m(i) = h[i];
-    Kokkos::deep_copy(x_, m);
+    copy_to_device(x_, h);
     Kokkos::deep_copy(x_in_, x_);
   }
 
@@ -384,8 +364,8 @@ class BodyCleaner {
     prepare();
     if (!scene_.triangles.empty()) {
       const ClothLayers layers = make_cloth_layers(scene_);
-      const auto cloth_x = upload<Vec3, Mem>(scene_.points.position, "weft::cloth_x");
-      const auto cloth_tris = upload_tris<Mem>(scene_.triangles, "weft::cloth_tris");
+      const auto cloth_x = upload<Mem>(scene_.points.position, "weft::cloth_x");
+      const auto cloth_tris = upload_table<Mem>(scene_.triangles, "weft::cloth_tris");
       View<Aabb*> cloth_boxes("weft::cloth_boxes", scene_.triangles.size());
       swept_triangle_boxes(exec_, View<const Vec3*>(cloth_x), View<const Vec3*>(cloth_x), View<const int* [3]>(cloth_tris),
                            real(0), cloth_boxes);
@@ -394,16 +374,14 @@ class BodyCleaner {
       Kokkos::parallel_for(
           "weft::body_reserved", Kokkos::RangePolicy<Exec>(exec_, 0, vertices()),
           ReservedThickness<Mem>{geometry(), body_bvh_.nodes(), cloth_bvh.nodes(), n_, cloth_x, cloth_tris,
-                                 upload<uint64_t, Mem>(layers.triangle_bit, "weft::cloth_bit"),
-                                 upload<real, Mem>(layers.bit_thickness, "weft::bit_thickness"), settings_.reach,
+                                 upload<Mem>(layers.triangle_bit, "weft::cloth_bit"),
+                                 upload<Mem>(layers.bit_thickness, "weft::bit_thickness"), settings_.reach,
                                  reserved_});
     }
-    auto h = Kokkos::create_mirror_view(reserved_);
-    Kokkos::deep_copy(h, reserved_);
-    for (long v = 0; v < vertices(); ++v) {
-      out.reserved.push_back(h(v));
-      if (h(v) > 0) ++out.reserved_points;
-      out.max_reserved = max_(out.max_reserved, h(v));
+    for (real r : to_host(reserved_)) {
+      out.reserved.push_back(r);
+      if (r > 0) ++out.reserved_points;
+      out.max_reserved = max_(out.max_reserved, r);
     }
   }
 
@@ -473,11 +451,7 @@ class BodyCleaner {
     Kokkos::parallel_reduce("weft::body_count_moved", Kokkos::RangePolicy<Exec>(exec_, 0, nv), CountSet<Mem>{flag_},
                             fc.points_moved);
     fc.max_displacement = fc.points_moved > 0 ? max_fixed(exec_, dist_) : 0;
-    auto m = Kokkos::create_mirror_view(x_);
-    Kokkos::deep_copy(m, x_);
-    std::vector<Vec3> x(nv);
-    for (long v = 0; v < nv; ++v) x[v] = m(v);
-    return x;
+    return to_host(x_);
   }
 
   // A collider keeps its own frames, bit for bit, unless the check moved one of its points on some frame;

@@ -1,6 +1,7 @@
 // Many CCD queries of one kind at once, one thread each.
 #pragma once
 #include "collision/ccd.hpp"
+#include "core/device_copy.hpp"
 
 #include <Kokkos_Core.hpp>
 #include <vector>
@@ -39,15 +40,10 @@ void ccd_batch(const Exec& exec, CcdKind kind, const Kokkos::View<const Vec3*, t
 template <class Exec>
 std::vector<CcdResult> ccd_batch_on(CcdKind kind, const std::vector<Vec3>& rows, real ms, const CcdSettings& settings) {
   using Mem = typename Exec::memory_space;
-  Kokkos::View<Vec3*, Mem> rows_d("weft::ccd_rows", rows.size());
-  auto rows_h = Kokkos::create_mirror_view(rows_d);
-  for (size_t i = 0; i < rows.size(); ++i) rows_h(i) = rows[i];
-  Kokkos::deep_copy(rows_d, rows_h);
+  const Kokkos::View<const Vec3*, Mem> rows_d = upload<Mem>(rows, "weft::ccd_rows");
   Kokkos::View<CcdResult*, Mem> out("weft::ccd_results", rows.size() / 8);
-  ccd_batch(Exec(), kind, Kokkos::View<const Vec3*, Mem>(rows_d), ms, settings, out);
-  auto out_h = Kokkos::create_mirror_view(out);
-  Kokkos::deep_copy(out_h, out);
-  return std::vector<CcdResult>(out_h.data(), out_h.data() + out_h.extent(0));
+  ccd_batch(Exec(), kind, rows_d, ms, settings, out);
+  return to_host(out);
 }
 
 }  // namespace weft

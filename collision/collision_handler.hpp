@@ -17,6 +17,7 @@
 #include "collision/lbvh.hpp"
 #include "collision/narrow_pipeline.hpp"
 #include "collision/representative.hpp"
+#include "core/device_copy.hpp"
 #include "core/solver_state.hpp"
 #include "core/stage_timer.hpp"
 #include "scene/scene.hpp"
@@ -70,12 +71,12 @@ class CollisionHandler final : public CollisionStage<Exec> {
     profile_ = s.settings.profile;
     proximity_ = settings_.contact_model == ContactModel::Proximity;
     // Cloth side.
-    cloth_tris_ = upload_tris(s.triangles);
-    cloth_rmask_ = upload(representative_features(s.triangles, int(s.points.size())), "weft::cloth_rmask");
-    cloth_th_ = upload(s.points.thickness, "weft::thickness");
-    cloth_fr_ = upload(s.points.friction, "weft::friction");
-    cloth_dfr_ = upload(s.points.dynamic_friction, "weft::dfriction");
-    cloth_layer_ = upload(s.points.layer, "weft::layer");
+    cloth_tris_ = upload_table<Mem>(s.triangles, "weft::cloth_tris");
+    cloth_rmask_ = upload<Mem>(representative_features(s.triangles, int(s.points.size())), "weft::cloth_rmask");
+    cloth_th_ = upload<Mem>(s.points.thickness, "weft::thickness");
+    cloth_fr_ = upload<Mem>(s.points.friction, "weft::friction");
+    cloth_dfr_ = upload<Mem>(s.points.dynamic_friction, "weft::dfriction");
+    cloth_layer_ = upload<Mem>(s.points.layer, "weft::layer");
     std::vector<real> margin(s.triangles.size()), failsafe_margin(s.triangles.size());
     for (size_t t = 0; t < s.triangles.size(); ++t) {
       real m = 0;
@@ -83,8 +84,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
       margin[t] = ns_.detect_scale * m;
       failsafe_margin[t] = failsafe_box_margin(m);
     }
-    cloth_margin_ = upload(margin, "weft::cloth_margin");
-    cloth_failsafe_margin_ = upload(failsafe_margin, "weft::cloth_failsafe_margin");
+    cloth_margin_ = upload<Mem>(margin, "weft::cloth_margin");
+    cloth_failsafe_margin_ = upload<Mem>(failsafe_margin, "weft::cloth_failsafe_margin");
     if (proximity_) {
       bound_settings_.animated_pins = !s.kinematic_point.empty() && s.pin_targets.frames.size() > 1;
       // A triangle's smallest query margin: an unfound pair keeps more than (1 - gamma)(m_A + m_B), at
@@ -97,7 +98,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
           edge = std::max(edge, norm(s.points.position[s.triangles[t][(k + 1) % 3]] - s.points.position[s.triangles[t][k]]));
         ceiling[t] = std::max(floor[t], std::min(edge, 2 * floor[t]));
       }
-      bounds_.emplace(long(s.points.size()), upload(floor, "weft::bounds_floor"), upload(ceiling, "weft::bounds_ceiling"),
+      bounds_.emplace(long(s.points.size()), upload<Mem>(floor, "weft::bounds_floor"), upload<Mem>(ceiling, "weft::bounds_ceiling"),
                       bound_settings_);
     }
     cloth_boxes_ = View<Aabb*>("weft::cloth_boxes", s.triangles.size());
@@ -113,11 +114,11 @@ class CollisionHandler final : public CollisionStage<Exec> {
       vfr.resize(size_t(off), c.friction);
       tmargin.resize(ct.size(), ns_.detect_scale * c.thickness);
     }
-    collider_th_ = upload(vth, "weft::collider_thickness");
-    collider_fr_ = upload(vfr, "weft::collider_friction");
-    collider_margin_ = upload(tmargin, "weft::collider_margin");
-    collider_tris_ = upload_tris(ct);
-    collider_rmask_ = upload(representative_features(ct, off), "weft::collider_rmask");
+    collider_th_ = upload<Mem>(vth, "weft::collider_thickness");
+    collider_fr_ = upload<Mem>(vfr, "weft::collider_friction");
+    collider_margin_ = upload<Mem>(tmargin, "weft::collider_margin");
+    collider_tris_ = upload_table<Mem>(ct, "weft::collider_tris");
+    collider_rmask_ = upload<Mem>(representative_features(ct, off), "weft::collider_rmask");
     collider_nb_ = upload_neighbours(ct);
     collider_boxes_ = View<Aabb*>("weft::collider_boxes", ct.size());
   }
@@ -348,22 +349,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
     for (int k = 1; k < 12; ++k) { term = -term * x * x / real((2 * k) * (2 * k + 1)); s += term; }
     return s;
   }
-  template <class T>
-  View<T*> upload(const std::vector<T>& h, const char* label) const {
-    View<T*> d(std::string(label), h.size());
-    auto m = Kokkos::create_mirror_view(d);
-    for (size_t i = 0; i < h.size(); ++i) m(i) = h[i];
-    Kokkos::deep_copy(d, m);
-    return d;
-  }
-  View<int* [3]> upload_tris(const std::vector<std::array<int, 3>>& t) const {
-    View<int* [3]> d("weft::tris", t.size());
-    auto m = Kokkos::create_mirror_view(d);
-    for (size_t i = 0; i < t.size(); ++i)
-      for (int k = 0; k < 3; ++k) m(i, k) = t[i][k];
-    Kokkos::deep_copy(d, m);
-    return d;
-  }
   // The triangle across each edge (corner k to k+1) of a collider mesh, -1 on a boundary.
   View<int* [3]> upload_neighbours(const std::vector<std::array<int, 3>>& t) const {
     std::map<std::pair<int, int>, std::vector<int>> edges;
@@ -376,7 +361,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
         for (int o : tri)
           if (o != i) { nb[i][k] = o; break; }
       }
-    return upload_tris(nb);
+    return upload_table<Mem>(nb, "weft::collider_neighbours");
   }
 
  public:

@@ -7,6 +7,7 @@
 #include "collision/contact.hpp"
 #include "core/hash.hpp"
 #include "core/compact.hpp"
+#include "core/device_copy.hpp"
 #include "core/sort.hpp"
 
 #include <Kokkos_Core.hpp>
@@ -174,12 +175,12 @@ class ContactColouring {
     Kokkos::parallel_for("weft::contact_gather", Kokkos::RangePolicy<Exec>(exec, 0, n), Gather<Mem>{contacts, sorted_, ov});
     grow(first_, rounds + 1);
     Kokkos::parallel_for("weft::colour_bounds", Kokkos::RangePolicy<Exec>(exec, 0, n), ColourBounds<Mem>{kv, first_, n});
-    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), Kokkos::subview(first_, std::make_pair(0L, long(rounds + 1))));
+    const auto h = to_host(Kokkos::subview(first_, std::make_pair(0L, long(rounds + 1))));
     // Every round colours at least one contact until none is left (the largest key always wins), so the
     // colours are 0..k-1 with first(k) = n; the batch's last rounds may have found nothing to colour.
     int colours = 1;
-    while (h(colours) != n) ++colours;
-    offsets.assign(h.data(), h.data() + colours + 1);
+    while (h[colours] != n) ++colours;
+    offsets.assign(h.begin(), h.begin() + colours + 1);
     std::swap(contacts, sorted_);
     return offsets;
   }

@@ -3,6 +3,7 @@
 // tree and its buffers are kept.
 #pragma once
 #include "collision/tri_tri.hpp"
+#include "core/device_copy.hpp"
 
 #include <array>
 #include <vector>
@@ -14,12 +15,8 @@ class MeshIntersections {
  public:
   using Mem = typename Exec::memory_space;
 
-  explicit MeshIntersections(const std::vector<std::array<int, 3>>& tris) : tris_("weft::mesh_tris", tris.size()) {
-    auto h = Kokkos::create_mirror_view(tris_);
-    for (size_t t = 0; t < tris.size(); ++t)
-      for (int k = 0; k < 3; ++k) h(t, k) = tris[t][k];
-    Kokkos::deep_copy(tris_, h);
-  }
+  explicit MeshIntersections(const std::vector<std::array<int, 3>>& tris)
+      : tris_(upload_table<Mem>(tris, "weft::mesh_tris")) {}
 
   // Positions on the device.
   long count(Kokkos::View<const Vec3*, Mem> x) { return count_intersections(bvh_, x, Kokkos::View<const int* [3], Mem>(tris_)); }
@@ -27,9 +24,7 @@ class MeshIntersections {
   // Positions on the host, copied into a device buffer kept from call to call.
   long count(const std::vector<Vec3>& x) {
     if (x_.extent(0) != x.size()) x_ = Kokkos::View<Vec3*, Mem>("weft::mesh_x", x.size());
-    auto h = Kokkos::create_mirror_view(x_);
-    for (size_t i = 0; i < x.size(); ++i) h(i) = x[i];
-    Kokkos::deep_copy(x_, h);
+    copy_to_device(x_, x);
     return count(Kokkos::View<const Vec3*, Mem>(x_));
   }
 

@@ -7,6 +7,7 @@
 #include "constraints/build_tethers.hpp"
 #include "constraints/triangle_strain.hpp"
 #include "core/colouring.hpp"
+#include "core/device_copy.hpp"
 #include "core/error.hpp"
 #include "core/hash.hpp"
 #include "core/kokkos_compat.hpp"
@@ -58,10 +59,38 @@ class Solver {
   long row_storage_bytes() const { return row_storage_bytes_; }
   void set_collision_stage(std::unique_ptr<CollisionStage<Exec>> c) { collision_ = std::move(c); }
 
+  // Streamed colliders: every collider vertex, concatenated in the scene's collider order, at the end of the
+  // frame the next step_frame() steps; its substeps move the colliders linearly from where they are to
+  // there. From the first call on, the scene's collider animation is no longer used: a frame stepped without
+  // a new call keeps the colliders where the last one put them.
+  void set_collider_frame(const std::vector<Vec3>& x) {
+    const size_t n = state_.collider_x.extent(0);
+    if (x.size() != n)
+      throw InputError("collider frame has " + std::to_string(x.size()) + " vertices, the scene's colliders " +
+                       std::to_string(n));
+    stream_colliders();
+    copy_to_device(collider_frame_end_, x);
+  }
+  // The same for collider `collider` of the scene alone; the others keep their last streamed positions.
+  void set_collider_frame(int collider, const std::vector<Vec3>& x) {
+    const int nc = int(collider_offset_.size());
+    if (collider < 0 || collider >= nc)
+      throw InputError("collider " + std::to_string(collider) + " does not exist: the scene has " + std::to_string(nc) +
+                       " colliders");
+    const long begin = collider_offset_[size_t(collider)];
+    const long end = collider + 1 < nc ? collider_offset_[size_t(collider) + 1] : long(state_.collider_x.extent(0));
+    if (long(x.size()) != end - begin)
+      throw InputError("frame of collider " + std::to_string(collider) + " has " + std::to_string(x.size()) +
+                       " vertices, the collider " + std::to_string(end - begin));
+    stream_colliders();
+    copy_to_device(Kokkos::subview(collider_frame_end_, Kokkos::make_pair(begin, end)), x);
+  }
+
   // Advances from frame() to frame() + 1.
   FrameStats step_frame() {
     const auto t0 = std::chrono::steady_clock::now();
     prof_ = FrameStats{};
+    if (colliders_streamed_) Kokkos::deep_copy(exec_, collider_frame_start_, state_.collider_x);
     for (int s = 0; s < st_.substeps; ++s) substep(s);
     ++frame_;
     exec_.fence();
@@ -85,13 +114,15 @@ class Solver {
     if (x.size() != state_.x.extent(0) || v.size() != state_.v.extent(0))
       throw InputError("saved state has " + std::to_string(x.size()) + " points, the scene " +
                        std::to_string(state_.x.extent(0)));
-    Kokkos::deep_copy(state_.x, upload(x, "weft::x_in"));
-    Kokkos::deep_copy(state_.v, upload(v, "weft::v_in"));
+    copy_to_device(state_.x, x);
+    copy_to_device(state_.v, v);
     frame_ = frame;
-    // Animated goals and colliders at the new frame, as an uninterrupted run would have them.
+    // Animated goals and colliders at the new frame, as an uninterrupted run would have them; streamed
+    // colliders follow the scene's animation again until the next set_collider_frame.
     const real t = real(frame_ - st_.frame_start);
     kernels::interpolate_animation(exec_, target_frames_, targets_, t);
     kernels::interpolate_animation(exec_, collider_frames_, state_.collider_x, t);
+    colliders_streamed_ = false;
   }
   std::vector<Vec3> velocities() const { return to_host(state_.v); }
 
@@ -152,7 +183,15 @@ class Solver {
   void substep(int s) {
     const real h = 1 / (st_.fps * st_.substeps);
     const real t_end = real(frame_ - st_.frame_start) + real(s + 1) / real(st_.substeps);
-    if (collider_frames_.extent(0) > 0) {
+    if (colliders_streamed_) {
+      // The frame's start and end stand as stored frames f and f + 1, so that t_end picks and weighs them as
+      // it does a full animation's frames: the same bits where they hold the same positions.
+      const long f = frame_ - st_.frame_start;
+      const kernels::FramePair p = kernels::frame_pair(t_end, f + 2);
+      Kokkos::deep_copy(exec_, state_.collider_x_start, state_.collider_x);
+      kernels::interpolate(exec_, p.f0 == f ? collider_frame_start_ : collider_frame_end_,
+                           p.f1 == f ? collider_frame_start_ : collider_frame_end_, p.a, state_.collider_x);
+    } else if (collider_frames_.extent(0) > 0) {
       Kokkos::deep_copy(exec_, state_.collider_x_start, state_.collider_x);
       kernels::interpolate_animation(exec_, collider_frames_, state_.collider_x, t_end);
     }
@@ -335,27 +374,6 @@ class Solver {
   // Fraction of its lag a pinned point held back (by the ccd model's fail-safe, or by its bound where the
   // cloth jams) closes per substep before the bounds apply.
   static constexpr real kPinCatchUp = 0.25;
-  template <class V>
-  std::vector<typename V::non_const_value_type> to_host(const V& d) const {
-    auto m = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d);
-    return std::vector<typename V::non_const_value_type>(m.data(), m.data() + m.extent(0));
-  }
-  template <class T>
-  View<T*> upload(const std::vector<T>& h, const char* label) const {
-    View<T*> d(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(label)), h.size());
-    Kokkos::View<const T*, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> hv(h.data(), h.size());
-    Kokkos::deep_copy(d, hv);
-    return d;
-  }
-  View<Vec3**> upload_frames(const Animation& a, const char* label) const {
-    const size_t nf = a.frames.size(), n = nf ? a.frames[0].size() : 0;
-    View<Vec3**> d(std::string(label), nf, n);
-    auto m = Kokkos::create_mirror_view(d);
-    for (size_t f = 0; f < nf; ++f)
-      for (size_t i = 0; i < n; ++i) m(f, i) = a.frames[f][i];
-    Kokkos::deep_copy(d, m);
-    return d;
-  }
 
   void upload_points(const Scene& sc) {
     const ClothPoints& p = sc.points;
@@ -368,11 +386,11 @@ class Solver {
       w[i] = (p.mass[i] > 0 && !(p.stopped[i] & 1) && !kinematic[i]) ? 1 / p.mass[i] : 0.0;
       movable_ += w[i] > 0;
     }
-    state_.x = upload(p.position, "weft::x");
-    state_.v = upload(p.velocity, "weft::v");
+    state_.x = upload<Mem>(p.position, "weft::x");
+    state_.v = upload<Mem>(p.velocity, "weft::v");
     state_.x_start = View<Vec3*>("weft::x_start", n);
-    state_.w = upload(w, "weft::w");
-    mass_ = upload(p.mass, "weft::mass");
+    state_.w = upload<Mem>(w, "weft::w");
+    mass_ = upload<Mem>(p.mass, "weft::mass");
     scratch_ = View<real*>("weft::scratch", n);
     if (chebyshev_on()) {
       cheb_xk_ = View<Vec3*>("weft::chebyshev_xk", n);
@@ -382,12 +400,12 @@ class Solver {
   }
 
   void upload_animation(const Scene& sc) {
-    target_frames_ = upload_frames(sc.pin_targets, "weft::target_frames");
+    target_frames_ = upload_frames<Mem>(sc.pin_targets.frames, "weft::target_frames");
     targets_ = View<Vec3*>("weft::targets", target_frames_.extent(1));
     targets_before_ = View<Vec3*>("weft::targets_before", target_frames_.extent(1));
     kernels::interpolate_animation(exec_, target_frames_, targets_, 0.0);
-    kin_point_ = upload(sc.kinematic_point, "weft::kin_point");
-    kin_target_ = upload(sc.kinematic_target, "weft::kin_target");
+    kin_point_ = upload<Mem>(sc.kinematic_point, "weft::kin_point");
+    kin_target_ = upload<Mem>(sc.kinematic_target, "weft::kin_target");
     // All colliders' vertices, concatenated; frames padded by holding each collider's last frame.
     Animation all;
     size_t nf = 0;
@@ -403,11 +421,23 @@ class Solver {
       }
       offset += int(c.motion.frames[0].size());
     }
-    collider_frames_ = upload_frames(all, "weft::collider_frames");
+    collider_frames_ = upload_frames<Mem>(all.frames, "weft::collider_frames");
     state_.collider_x = View<Vec3*>("weft::collider_x", collider_frames_.extent(1));
     state_.collider_x_start = View<Vec3*>("weft::collider_x_start", collider_frames_.extent(1));
     kernels::interpolate_animation(exec_, collider_frames_, state_.collider_x, 0.0);
     Kokkos::deep_copy(state_.collider_x_start, state_.collider_x);
+  }
+
+  // Switches the colliders to streamed frames, the end of the next frame where they are now until set.
+  void stream_colliders() {
+    if (colliders_streamed_) return;
+    const size_t n = state_.collider_x.extent(0);
+    if (collider_frame_end_.extent(0) != n) {
+      collider_frame_start_ = View<Vec3*>("weft::collider_frame_start", n);
+      collider_frame_end_ = View<Vec3*>("weft::collider_frame_end", n);
+    }
+    Kokkos::deep_copy(collider_frame_end_, state_.collider_x);
+    colliders_streamed_ = true;
   }
 
   void upload_rows(const Scene& sc) {
@@ -449,13 +479,13 @@ class Solver {
       if (added) materials.push_back(m);
       material[r] = it->second;
     }
-    materials_ = upload(materials, "weft::materials");
+    materials_ = upload<Mem>(materials, "weft::materials");
     std::vector<size_t> by_place(nr);
     for (size_t r = 0; r < nr; ++r) by_place[size_t(place[r])] = r;
     upload_packed(rows, material, by_place, std::make_integer_sequence<int, kRowKinds>{});
-    tethers_ = upload(build_tethers(sc, w_host_), "weft::tethers");
+    tethers_ = upload<Mem>(build_tethers(sc, w_host_), "weft::tethers");
     lambda_ = View<real*>("weft::lambda", nr);
-    tri_rest_ = upload(triangle_rest_shapes(sc), "weft::triangle_rest");
+    tri_rest_ = upload<Mem>(triangle_rest_shapes(sc), "weft::triangle_rest");
     row_scratch_ = View<real*>("weft::row_scratch", std::max(nr, tri_rest_.extent(0)));
     // Jacobi gather lists: for each point, the (row, slot) entries that move it, in colour order (the
     // order of the sum, so it is kept apart from the storage order).
@@ -473,8 +503,8 @@ class Solver {
       std::vector<long> pos(off.begin(), off.end() - 1);
       for (size_t r : by_colour)
         for (int k = 0; k < rows[r].n; ++k) slots[pos[rows[r].idx[k]]++] = long(k) * long(nr) + place[r];
-      point_slot_offset_ = upload(off, "weft::point_slot_offset");
-      point_slot_ = upload(slots, "weft::point_slot");
+      point_slot_offset_ = upload<Mem>(off, "weft::point_slot_offset");
+      point_slot_ = upload<Mem>(slots, "weft::point_slot");
       row_delta_ = View<Vec3*>("weft::row_delta", 5 * nr);
     }
   }
@@ -491,7 +521,7 @@ class Solver {
         const size_t r = by_place[size_t(p)];
         packed.push_back(pack_row<Kind>(rows[r], material[r]));
       }
-      std::get<Kind>(packed_) = upload(packed, "weft::rows");
+      std::get<Kind>(packed_) = upload<Mem>(packed, "weft::rows");
       row_storage_bytes_ += long(packed.size() * sizeof(PackedRow<Kind>));
     };
     (one(std::integral_constant<int, K>{}), ...);
@@ -518,7 +548,9 @@ class Solver {
   View<Vec3**> target_frames_, collider_frames_;
   View<Vec3*> targets_, targets_before_;  // targets at the end and at the start of the substep
   View<int*> kin_point_, kin_target_;
-  std::vector<int> collider_offset_;
+  std::vector<int> collider_offset_;  // each collider's first vertex in collider_x
+  bool colliders_streamed_ = false;   // set_collider_frame was called: colliders follow the streamed frames
+  View<Vec3*> collider_frame_start_, collider_frame_end_;  // streamed: the colliders at the frame's start and end
   View<Vec3*> row_delta_;
   View<Vec3*> cheb_xk_, cheb_xkm1_;  // Chebyshev: the iterates at the start of this and of the last iteration
   View<long*> point_slot_offset_, point_slot_;

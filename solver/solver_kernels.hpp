@@ -13,12 +13,33 @@ namespace weft::kernels {
 
 template <class Mem>
 struct InterpolateFrames {
-  Kokkos::View<Vec3**, Mem> frames;
+  Kokkos::View<const Vec3*, Kokkos::LayoutStride, Mem> x0, x1;  // rows of an animation, or streamed frames
   Kokkos::View<Vec3*, Mem> out;
+  real a;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const { out(i) = x0(i) + a * (x1(i) - x0(i)); }
+};
+
+// The stored frames f0, f1 around time t (in frames since the first stored one) of nf >= 1 frames, and the
+// weight of f1; past the last frame, the last is held.
+struct FramePair {
   long f0, f1;
   real a;
-  KOKKOS_INLINE_FUNCTION void operator()(long i) const { out(i) = frames(f0, i) + a * (frames(f1, i) - frames(f0, i)); }
 };
+inline FramePair frame_pair(real t, long nf) {
+  long f0 = long(t);
+  real a = t - real(f0);
+  if (f0 >= nf - 1) { f0 = nf - 1; a = 0; }
+  return {f0, f0 + 1 < nf ? f0 + 1 : f0, a};
+}
+
+// out = x0 + a (x1 - x0).
+template <class Exec>
+void interpolate(const Exec& exec, const Kokkos::View<const Vec3*, Kokkos::LayoutStride, typename Exec::memory_space>& x0,
+                 const Kokkos::View<const Vec3*, Kokkos::LayoutStride, typename Exec::memory_space>& x1, real a,
+                 const Kokkos::View<Vec3*, typename Exec::memory_space>& out) {
+  Kokkos::parallel_for("weft::interpolate_animation", Kokkos::RangePolicy<Exec>(exec, 0, out.extent(0)),
+                       InterpolateFrames<typename Exec::memory_space>{x0, x1, out, a});
+}
 
 // Goals at time t (in frames since the first frame): linear between stored frames, last frame held.
 template <class Exec>
@@ -26,12 +47,8 @@ void interpolate_animation(const Exec& exec, const Kokkos::View<Vec3**, typename
                            const Kokkos::View<Vec3*, typename Exec::memory_space>& out, real t) {
   const long nf = long(frames.extent(0)), n = long(frames.extent(1));
   if (nf == 0 || n == 0) return;
-  long f0 = long(t);
-  real a = t - real(f0);
-  if (f0 >= nf - 1) { f0 = nf - 1; a = 0; }
-  const long f1 = f0 + 1 < nf ? f0 + 1 : f0;
-  Kokkos::parallel_for("weft::interpolate_animation", Kokkos::RangePolicy<Exec>(exec, 0, n),
-                       InterpolateFrames<typename Exec::memory_space>{frames, out, f0, f1, a});
+  const FramePair p = frame_pair(t, nf);
+  interpolate(exec, Kokkos::subview(frames, p.f0, Kokkos::ALL), Kokkos::subview(frames, p.f1, Kokkos::ALL), p.a, out);
 }
 
 template <class Mem>

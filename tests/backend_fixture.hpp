@@ -1,5 +1,7 @@
 // Helpers shared by the test bodies; each body uses WEFT_TEST_EXECSPACE and WEFT_TEST_SUITE.
 #pragma once
+#include "core/device_copy.hpp"
+
 #include <Kokkos_Core.hpp>
 #include <gtest/gtest.h>
 
@@ -24,21 +26,10 @@ namespace weft::test {
 // Copy a host vector into a View of the execution space.
 template <class Exec, class T>
 Kokkos::View<T*, typename Exec::memory_space> to_device(const std::vector<T>& h, const char* label = "test") {
-  Kokkos::View<T*, typename Exec::memory_space> d(std::string(label), h.size());
-  auto m = Kokkos::create_mirror_view(d);
-  for (size_t i = 0; i < h.size(); ++i) m(i) = h[i];
-  Kokkos::deep_copy(d, m);
-  return d;
+  return upload<typename Exec::memory_space>(h, label);
 }
 
-template <class View>
-std::vector<typename View::non_const_value_type> to_host(const View& d) {
-  auto m = Kokkos::create_mirror_view(d);
-  Kokkos::deep_copy(m, d);
-  std::vector<typename View::non_const_value_type> h(d.extent(0));
-  for (size_t i = 0; i < h.size(); ++i) h[i] = m(i);
-  return h;
-}
+using weft::to_host;
 
 inline uint64_t bits(double x) {
   uint64_t u;
