@@ -88,7 +88,7 @@ int check(const GlobalOptions& g, const Options& o) {
                                          std::to_string(sim->frame()), 2);
   while (sim->frame() < target) {
     const FrameStats fs = sim->step_frame();
-    std::printf("frame %d  contacts %ld  intersections %ld\n", fs.frame, fs.contacts, sim->intersections());
+    std::printf("frame %d  contacts %ld  intersections %ld\n", fs.frame, fs.collision.contacts, sim->intersections());
   }
   std::printf("intersections %ld\n", sim->intersections());
   return 0;

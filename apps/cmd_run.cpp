@@ -113,13 +113,13 @@ class Progress {
     if (quiet_) return;
     if (!tty_) {
       std::printf("frame %d  ke %.3e J  rms speed %.3e m/s  max strain %.3e  contacts %ld  ", fs.frame,
-                  fs.kinetic_energy, fs.rms_speed, fs.max_strain, fs.contacts);
-      if (fs.collision_queries > 0)  // proximity contacts
-        std::printf("passes %ld (%ld early, %ld full queries)  cut back %ld", fs.collision_passes, fs.early_passes,
-                    fs.collision_queries, fs.points_cut_back);
+                  fs.kinetic_energy, fs.rms_speed, fs.max_strain, fs.collision.contacts);
+      if (fs.collision.queries > 0)  // proximity contacts
+        std::printf("passes %ld (%ld early, %ld full queries)  cut back %ld", fs.schedule.collision_passes, fs.collision.early_passes,
+                    fs.collision.queries, fs.collision.points_cut_back);
       else
-        std::printf("moved back %ld (%ld pinned, %ld fail-safe rounds)", fs.failsafe_points, fs.failsafe_pinned,
-                    fs.failsafe_rounds);
+        std::printf("moved back %ld (%ld pinned, %ld fail-safe rounds)", fs.collision.failsafe_points, fs.collision.failsafe_pinned,
+                    fs.collision.failsafe_rounds);
       std::printf("  pin lag %.2e m  %.2f ms\n", fs.max_pin_lag, 1e3 * fs.seconds);
       std::fflush(stdout);  // a log being followed shows each frame as it is done
       return;

@@ -9,6 +9,7 @@
 // Both: friction, and impact-zone smoothing of velocities at the end of the substep.
 #pragma once
 #include "collision/aabb.hpp"
+#include "collision/collision_stage.hpp"
 #include "collision/contact_colouring.hpp"
 #include "collision/contact_jacobi.hpp"
 #include "collision/crossing_failsafe.hpp"
@@ -18,7 +19,6 @@
 #include "collision/narrow_pipeline.hpp"
 #include "collision/representative.hpp"
 #include "core/device_copy.hpp"
-#include "core/solver_state.hpp"
 #include "core/stage_timer.hpp"
 #include "scene/scene.hpp"
 
@@ -43,20 +43,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
   using Mem = typename Exec::memory_space;
   template <class T>
   using View = Kokkos::View<T, Mem>;
-
-  struct Stats {
-    long contacts = 0, colours = 0;
-    ImpactZoneStats zones;
-    long failsafe_points = 0;  // moved back by the fail-safe since the handler was made
-    long failsafe_rounds = 0;  // its rounds since the handler was made
-    long failsafe_pinned = 0;  // pinned points among failsafe_points
-    long queries = 0;          // proximity: full pair queries since the handler was made (the other passes
-                               // kept the last one's self pairs)
-    long early_passes = 0;     // proximity: of them, run early because points were cut back
-    long points_cut_back = 0;  // proximity: points cut back to their bounds, summed over every truncation
-    // With profile (fenced), since the handler was made: FrameStats' collision stage times.
-    double seconds_lbvh_build = 0, seconds_broad_phase = 0, seconds_narrow_phase = 0, seconds_contact_colouring = 0;
-  };
 
   explicit CollisionHandler(const Scene& s)
       : settings_(s.settings.collision), cloth_bvh_(Exec()), collider_bvh_(Exec()) {
@@ -123,7 +109,15 @@ class CollisionHandler final : public CollisionStage<Exec> {
     collider_boxes_ = View<Aabb*>("weft::collider_boxes", ct.size());
   }
 
-  const Stats& stats() const { return stats_; }
+  // The sums start anew; the last pass's contacts and the last substep's impact zones carry over until
+  // replaced.
+  void begin_frame() override {
+    CollisionStats next;
+    next.contacts = stats_.contacts;
+    next.impact_zone_points = stats_.impact_zone_points;
+    stats_ = next;
+  }
+  CollisionStats frame_stats() const override { return stats_; }
 
   // The trees are built once per frame; every pass refits them first.
   void begin_substep(const SolverState<Exec>& s, real, int substep) override {
@@ -166,7 +160,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
     if (jacobi_) offsets_ = {0};  // Jacobi needs no colours
     else timed("weft::contact_colouring", stats_.seconds_contact_colouring, [&] { offsets_ = colouring_.colour(s.exec, contacts_, n, s.w); });
     stats_.contacts = n;
-    stats_.colours = long(offsets_.size()) - 1;
   }
 
   void project(const SolverState<Exec>& s, real) override {
@@ -223,8 +216,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
 
   void end_substep(const SolverState<Exec>& s, real) override {
     if (!settings_.impact_zone_smoothing) return;
-    stats_.zones = zones_.smooth(s.exec, contacts_, ncontacts_, s.x, s.collider_x, s.v, settings_.impact_zone_epsilon,
-                                 settings_.impact_zone_sweeps);
+    stats_.impact_zone_points = zones_.smooth(s.exec, contacts_, ncontacts_, s.x, s.collider_x, s.v,
+                                              settings_.impact_zone_epsilon, settings_.impact_zone_sweeps).points;
   }
 
   // A proximity query (collision/displacement_bounds.hpp): X0 is where the substep started (its first
@@ -316,7 +309,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
     ncontacts_ = n;
     offsets_ = {0};
     stats_.contacts = n;
-    stats_.colours = 0;
     if (!refresh) ++stats_.queries;
   }
 
@@ -417,7 +409,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   JacobiContacts<Exec> jacobi_run_;
   ImpactZones<Exec> zones_;
   CrossingFailsafe<Exec> failsafe_run_;
-  Stats stats_;
+  CollisionStats stats_;  // this frame's, since begin_frame()
 };
 
 }  // namespace weft

@@ -17,8 +17,11 @@ namespace {
 using h5::Handle;
 using Dims = std::vector<hsize_t>;
 
-// The per-frame statistics table: one compound row per frame, fields named as in FrameStats.
+// The per-frame statistics table: one compound row per frame, fields named as in FrameStats and the structs
+// of its stages (the collision stage's `queries` as `collision_queries`).
 static_assert(sizeof(FrameStats) == 224, "FrameStats changed: update kStatsFields");
+constexpr size_t in_collision(size_t offset) { return offsetof(FrameStats, collision) + offset; }
+constexpr size_t in_schedule(size_t offset) { return offsetof(FrameStats, schedule) + offset; }
 enum class Kind { I32, I64, F64 };
 struct StatsField {
   const char* name;
@@ -32,26 +35,26 @@ const StatsField kStatsFields[] = {
     {"max_strain", offsetof(FrameStats, max_strain), Kind::F64},
     {"rms_speed", offsetof(FrameStats, rms_speed), Kind::F64},
     {"non_finite", offsetof(FrameStats, non_finite), Kind::I64},
-    {"contacts", offsetof(FrameStats, contacts), Kind::I64},
-    {"impact_zone_points", offsetof(FrameStats, impact_zone_points), Kind::I64},
-    {"failsafe_points", offsetof(FrameStats, failsafe_points), Kind::I64},
+    {"contacts", in_collision(offsetof(CollisionStats, contacts)), Kind::I64},
+    {"impact_zone_points", in_collision(offsetof(CollisionStats, impact_zone_points)), Kind::I64},
+    {"failsafe_points", in_collision(offsetof(CollisionStats, failsafe_points)), Kind::I64},
     {"seconds", offsetof(FrameStats, seconds), Kind::F64},
-    {"seconds_constraints", offsetof(FrameStats, seconds_constraints), Kind::F64},
-    {"seconds_collision_passes", offsetof(FrameStats, seconds_collision_passes), Kind::F64},
-    {"seconds_contacts", offsetof(FrameStats, seconds_contacts), Kind::F64},
-    {"seconds_smoothing", offsetof(FrameStats, seconds_smoothing), Kind::F64},
-    {"seconds_failsafe", offsetof(FrameStats, seconds_failsafe), Kind::F64},
-    {"collision_passes", offsetof(FrameStats, collision_passes), Kind::I64},
-    {"failsafe_rounds", offsetof(FrameStats, failsafe_rounds), Kind::I64},
-    {"failsafe_pinned", offsetof(FrameStats, failsafe_pinned), Kind::I64},
+    {"seconds_constraints", in_schedule(offsetof(ScheduleStats, seconds_constraints)), Kind::F64},
+    {"seconds_collision_passes", in_schedule(offsetof(ScheduleStats, seconds_collision_passes)), Kind::F64},
+    {"seconds_contacts", in_schedule(offsetof(ScheduleStats, seconds_contacts)), Kind::F64},
+    {"seconds_smoothing", in_schedule(offsetof(ScheduleStats, seconds_smoothing)), Kind::F64},
+    {"seconds_failsafe", in_schedule(offsetof(ScheduleStats, seconds_failsafe)), Kind::F64},
+    {"collision_passes", in_schedule(offsetof(ScheduleStats, collision_passes)), Kind::I64},
+    {"failsafe_rounds", in_collision(offsetof(CollisionStats, failsafe_rounds)), Kind::I64},
+    {"failsafe_pinned", in_collision(offsetof(CollisionStats, failsafe_pinned)), Kind::I64},
     {"max_pin_lag", offsetof(FrameStats, max_pin_lag), Kind::F64},
-    {"collision_queries", offsetof(FrameStats, collision_queries), Kind::I64},
-    {"early_passes", offsetof(FrameStats, early_passes), Kind::I64},
-    {"points_cut_back", offsetof(FrameStats, points_cut_back), Kind::I64},
-    {"seconds_lbvh_build", offsetof(FrameStats, seconds_lbvh_build), Kind::F64},
-    {"seconds_broad_phase", offsetof(FrameStats, seconds_broad_phase), Kind::F64},
-    {"seconds_narrow_phase", offsetof(FrameStats, seconds_narrow_phase), Kind::F64},
-    {"seconds_contact_colouring", offsetof(FrameStats, seconds_contact_colouring), Kind::F64},
+    {"collision_queries", in_collision(offsetof(CollisionStats, queries)), Kind::I64},
+    {"early_passes", in_collision(offsetof(CollisionStats, early_passes)), Kind::I64},
+    {"points_cut_back", in_collision(offsetof(CollisionStats, points_cut_back)), Kind::I64},
+    {"seconds_lbvh_build", in_collision(offsetof(CollisionStats, seconds_lbvh_build)), Kind::F64},
+    {"seconds_broad_phase", in_collision(offsetof(CollisionStats, seconds_broad_phase)), Kind::F64},
+    {"seconds_narrow_phase", in_collision(offsetof(CollisionStats, seconds_narrow_phase)), Kind::F64},
+    {"seconds_contact_colouring", in_collision(offsetof(CollisionStats, seconds_contact_colouring)), Kind::F64},
     {"p99_strain", offsetof(FrameStats, p99_strain), Kind::F64},
     {"max_edge_strain", offsetof(FrameStats, max_edge_strain), Kind::F64},
 };

@@ -3,6 +3,7 @@
 // velocity update). Positions, rows and contacts stay on the device; inside a frame only counts and sums
 // that size or decide the next launches are read back (docs/solver.md), and the statistics after it.
 #pragma once
+#include "collision/collision_stage.hpp"
 #include "constraints/build_rows.hpp"
 #include "constraints/build_tethers.hpp"
 #include "constraints/triangle_strain.hpp"
@@ -12,7 +13,6 @@
 #include "core/hash.hpp"
 #include "core/kokkos_compat.hpp"
 #include "core/reduce.hpp"
-#include "core/solver_state.hpp"
 #include "core/stage_timer.hpp"
 #include "scene/scene.hpp"
 #include "solver/frame_stats.hpp"
@@ -89,19 +89,15 @@ class Solver {
   // Advances from frame() to frame() + 1.
   FrameStats step_frame() {
     const auto t0 = std::chrono::steady_clock::now();
-    prof_ = FrameStats{};
+    schedule_ = ScheduleStats{};
+    if (collision_) collision_->begin_frame();
     if (colliders_streamed_) Kokkos::deep_copy(exec_, collider_frame_start_, state_.collider_x);
     for (int s = 0; s < st_.substeps; ++s) substep(s);
     ++frame_;
     exec_.fence();
     const double solve = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     FrameStats fs = measure();
-    fs.seconds_constraints = prof_.seconds_constraints;
-    fs.seconds_collision_passes = prof_.seconds_collision_passes;
-    fs.seconds_contacts = prof_.seconds_contacts;
-    fs.seconds_smoothing = prof_.seconds_smoothing;
-    fs.seconds_failsafe = prof_.seconds_failsafe;
-    fs.collision_passes = prof_.collision_passes;
+    fs.schedule = schedule_;
     fs.seconds = solve;
     return fs;
   }
@@ -126,10 +122,11 @@ class Solver {
   }
   std::vector<Vec3> velocities() const { return to_host(state_.v); }
 
-  // Statistics of the current state.
+  // Statistics of the current state, with the collision stage's figures of the last frame.
   FrameStats measure() const {
     FrameStats fs;
     fs.frame = frame_;
+    if (collision_) fs.collision = collision_->frame_stats();
     const long n = long(state_.x.extent(0));
     auto x = state_.x, v = state_.v;
     auto w = state_.w;
@@ -209,13 +206,13 @@ class Solver {
     int next_pass = 0;
     auto timed = [this](const char* region, double& acc, auto&& stage) { timed_stage(region, st_.profile, acc, stage); };
     auto collision_pass = [&] {
-      timed("weft::collision_pass", prof_.seconds_collision_passes, [&] { collision_->pass(state_, h); });
-      ++prof_.collision_passes;
+      timed("weft::collision_pass", schedule_.seconds_collision_passes, [&] { collision_->pass(state_, h); });
+      ++schedule_.collision_passes;
       ++next_pass;
     };
     for (int it = 0; it < I; ++it) {
       while (next_pass < P && (long(next_pass) * I) / P == it) collision_pass();
-      timed("weft::constraints", prof_.seconds_constraints, [&] {
+      timed("weft::constraints", schedule_.seconds_constraints, [&] {
         const real omega = chebyshev_omega(it);
         if (chebyshev_on() && it + 1 >= st_.chebyshev_delay)
           Kokkos::parallel_for("weft::chebyshev_save", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
@@ -231,22 +228,22 @@ class Solver {
         }
       });
       if (!collision_) continue;
-      timed("weft::contacts", prof_.seconds_contacts, [&] { collision_->project(state_, h); });
+      timed("weft::contacts", schedule_.seconds_contacts, [&] { collision_->project(state_, h); });
       // An early pass (proximity contacts, when many points were cut back), unless one is scheduled next.
       const bool scheduled_next = next_pass < P && (long(next_pass) * I) / P == it + 1;
       if (it + 1 < I && !scheduled_next && collision_->wants_pass(state_)) {
-        timed("weft::collision_pass", prof_.seconds_collision_passes, [&] { collision_->pass(state_, h); });
-        ++prof_.collision_passes;
+        timed("weft::collision_pass", schedule_.seconds_collision_passes, [&] { collision_->pass(state_, h); });
+        ++schedule_.collision_passes;
       }
     }
     while (next_pass < P) collision_pass();
-    timed("weft::smoothing_sweeps", prof_.seconds_constraints, [&] {
+    timed("weft::smoothing_sweeps", schedule_.seconds_constraints, [&] {
       for (int it = 0; it < st_.smoothing_iterations; ++it) jacobi_sweep(h);
     });
-    if (collision_) timed("weft::finish_positions", prof_.seconds_failsafe, [&] { collision_->finish_positions(state_, h); });
+    if (collision_) timed("weft::finish_positions", schedule_.seconds_failsafe, [&] { collision_->finish_positions(state_, h); });
     Kokkos::parallel_for("weft::velocity", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
                          kernels::UpdateVelocity<Mem>{state_.x, state_.x_start, state_.v, h});
-    if (collision_) timed("weft::impact_zones", prof_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });
+    if (collision_) timed("weft::impact_zones", schedule_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });
   }
 
   // Not with the ccd model: it stays the paper's solver, for comparison (docs/solver.md).
@@ -555,7 +552,7 @@ class Solver {
   View<Vec3*> cheb_xk_, cheb_xkm1_;  // Chebyshev: the iterates at the start of this and of the last iteration
   View<long*> point_slot_offset_, point_slot_;
   std::unique_ptr<CollisionStage<Exec>> collision_;
-  FrameStats prof_;  // stage times of the frame in progress
+  ScheduleStats schedule_;  // the frame in progress
   std::optional<compat::Graph<Exec>> sweep_;  // gauss_seidel_sweep's kernels, for step h sweep_h_
   real sweep_h_ = 0;
   std::optional<compat::Graph<Exec>> smooth_;  // jacobi_sweep's kernels on the device, for step smooth_h_

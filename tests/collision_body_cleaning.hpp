@@ -172,7 +172,7 @@ template <class Exec>
 long squeezed_points(const weft::Scene& s) {
   weft::SimulationOn<Exec> sim(s);
   long n = 0;
-  while (sim.frame() < s.settings.frame_end) n += sim.step_frame().impact_zone_points;
+  while (sim.frame() < s.settings.frame_end) n += sim.step_frame().collision.impact_zone_points;
   return n;
 }
 

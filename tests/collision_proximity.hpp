@@ -119,10 +119,10 @@ TEST(WEFT_TEST_SUITE, proximity_twist_never_crosses_and_pins_follow_until_it_jam
   for (int f = 0; f < 45; ++f) {
     const weft::FrameStats fs = sim.step_frame();
     ASSERT_EQ(fs.non_finite, 0);
-    ASSERT_EQ(fs.failsafe_points, 0);
+    ASSERT_EQ(fs.collision.failsafe_points, 0);
     if (fs.frame <= 24) ASSERT_EQ(fs.max_pin_lag, 0.0) << "frame " << fs.frame;
     lag = std::max(lag, fs.max_pin_lag);
-    passes += fs.collision_passes;
+    passes += fs.schedule.collision_passes;
     if (f % 3 == 2 || f >= 33) ASSERT_EQ(sim.intersections(), 0) << "frame " << fs.frame;
   }
   std::printf("twist at 12 x 12: largest pin lag over 45 frames %.3e m\n", lag);
@@ -154,9 +154,9 @@ TEST(WEFT_TEST_SUITE, proximity_folding_sheet_stays_free_of_intersections) {
   for (int f = 0; f < 36; ++f) {
     const weft::FrameStats fs = sim.step_frame();
     ASSERT_EQ(fs.non_finite, 0);
-    contacts = std::max(contacts, fs.contacts);
-    passes += fs.collision_passes;
-    queries += fs.collision_queries;
+    contacts = std::max(contacts, fs.collision.contacts);
+    passes += fs.schedule.collision_passes;
+    queries += fs.collision.queries;
     if (f % 6 == 5) ASSERT_EQ(sim.intersections(), 0) << "frame " << fs.frame;
   }
   EXPECT_GT(contacts, 0);

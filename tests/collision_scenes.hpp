@@ -15,7 +15,7 @@ TEST(WEFT_TEST_SUITE, drape_on_sphere_has_no_intersections_and_stays_outside) {
   for (int f = 0; f < 24; ++f) {
     const weft::FrameStats fs = sim.step_frame();
     ASSERT_EQ(fs.non_finite, 0);
-    max_contacts = std::max(max_contacts, fs.contacts);
+    max_contacts = std::max(max_contacts, fs.collision.contacts);
     if (f % 6 == 5) ASSERT_EQ(sim.intersections(), 0) << "frame " << fs.frame;
     for (const Vec3& p : sim.positions())  // sphere: centre (0, 0.4, 0), radius 0.3 (faceted: allow 2 mm)
       ASSERT_GT(weft::norm(p - Vec3{0, 0.4, 0}), 0.3 - 0.002) << "frame " << fs.frame;
@@ -70,7 +70,7 @@ TEST(WEFT_TEST_SUITE, layer_drop_lands_fifty_layers_without_intersections) {
     fs = sim.step_frame();
     ASSERT_EQ(fs.non_finite, 0);
   }
-  EXPECT_GT(fs.contacts, 0);
+  EXPECT_GT(fs.collision.contacts, 0);
   EXPECT_EQ(sim.intersections(), 0);
   for (const Vec3& p : sim.positions())  // sphere: centre (0, 0.4, 0), radius 0.3 (faceted: allow 2 mm)
     ASSERT_GT(weft::norm(p - Vec3{0, 0.4, 0}), 0.3 - 0.002);
@@ -214,8 +214,8 @@ TEST(WEFT_TEST_SUITE, twist_stays_free_of_intersections_with_the_failsafe) {
   for (int f = 0; f < 45; ++f) {
     const weft::FrameStats fs = sim.step_frame();
     ASSERT_EQ(fs.non_finite, 0);
-    moved_back += fs.failsafe_points;
-    pinned += fs.failsafe_pinned;
+    moved_back += fs.collision.failsafe_points;
+    pinned += fs.collision.failsafe_pinned;
     if (pinned == 0) ASSERT_EQ(fs.max_pin_lag, 0.0) << "frame " << fs.frame;
     lag = std::max(lag, fs.max_pin_lag);
     if (f % 3 == 2 || f >= 33) ASSERT_EQ(sim.intersections(), 0) << "frame " << fs.frame;

@@ -35,11 +35,11 @@ void expect_frames(const CacheReader& r, const Frames& f) {
     const FrameStats &a = r.stats()[k], &b = f.stats[k];
     EXPECT_TRUE(a.frame == b.frame && a.kinetic_energy == b.kinetic_energy && a.max_speed == b.max_speed &&
                 a.max_strain == b.max_strain && a.rms_speed == b.rms_speed && a.non_finite == b.non_finite &&
-                a.contacts == b.contacts && a.impact_zone_points == b.impact_zone_points && a.seconds == b.seconds &&
-                a.seconds_constraints == b.seconds_constraints &&
-                a.seconds_collision_passes == b.seconds_collision_passes &&
-                a.seconds_contacts == b.seconds_contacts && a.seconds_smoothing == b.seconds_smoothing &&
-                a.collision_passes == b.collision_passes)
+                a.collision.contacts == b.collision.contacts && a.collision.impact_zone_points == b.collision.impact_zone_points && a.seconds == b.seconds &&
+                a.schedule.seconds_constraints == b.schedule.seconds_constraints &&
+                a.schedule.seconds_collision_passes == b.schedule.seconds_collision_passes &&
+                a.schedule.seconds_contacts == b.schedule.seconds_contacts && a.schedule.seconds_smoothing == b.schedule.seconds_smoothing &&
+                a.schedule.collision_passes == b.schedule.collision_passes)
         << "stats of frame " << k;
   }
 }

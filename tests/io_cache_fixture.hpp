@@ -41,14 +41,14 @@ inline FrameStats stats_of(int frame) {
   s.max_strain = 3.0 / frame;
   s.rms_speed = 4.0 / frame;
   s.non_finite = frame + 1;
-  s.contacts = frame + 2;
-  s.impact_zone_points = frame + 3;
+  s.collision.contacts = frame + 2;
+  s.collision.impact_zone_points = frame + 3;
   s.seconds = 0.5 / frame;
-  s.seconds_constraints = 0.25 / frame;
-  s.seconds_collision_passes = 0.125 / frame;
-  s.seconds_contacts = 0.0625 / frame;
-  s.seconds_smoothing = 0.03125 / frame;
-  s.collision_passes = frame + 4;
+  s.schedule.seconds_constraints = 0.25 / frame;
+  s.schedule.seconds_collision_passes = 0.125 / frame;
+  s.schedule.seconds_contacts = 0.0625 / frame;
+  s.schedule.seconds_smoothing = 0.03125 / frame;
+  s.schedule.collision_passes = frame + 4;
   return s;
 }
 
