@@ -196,7 +196,7 @@ const Entry kScenes[] = {
     {"hanging-sheet", hanging_sheet, 32}, {"drape-sphere", drape_sphere, 48}, {"layer-stack", layer_stack, 24},
     {"twist", twist, 48},                 {"fast-collider", fast_collider, 32}, {"skirt", skirt, 24},
     {"layer-drop", layer_drop, 12},
-    {"demo", demo_scene, 34},  // io/demo_scene.cpp; about 50K cloth triangles
+    {"demo", demo_scene, 34},  // io/demo_scene.cpp; 56,712 cloth triangles (`weft demo` runs res 20)
 };
 
 }  // namespace

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The four report scripts of bench/reports/ and weft's side of bench/peers/newton_compare.py, each run end to
+"""The five report scripts of bench/reports/ and weft's side of bench/peers/newton_compare.py, each run end to
 end at a tiny size against the built weft.
 
     python3 tests/report_scripts.py --weft build/openmp/bin/weft
