@@ -57,7 +57,10 @@ class Solver {
   long tether_count() const { return long(tethers_.extent(0)); }
   // Bytes of the packed rows on the device (each sweep reads them all).
   long row_storage_bytes() const { return row_storage_bytes_; }
-  void set_collision_stage(std::unique_ptr<CollisionStage<Exec>> c) { collision_ = std::move(c); }
+  void set_collision_stage(std::unique_ptr<CollisionStage<Exec>> c) {
+    collision_ = std::move(c);
+    if (collision_ && chebyshev_on()) cheb_xc_ = View<Vec3*>("weft::chebyshev_xc", state_.x.extent(0));
+  }
 
   // Streamed colliders: every collider vertex, concatenated in the scene's collider order, at the end of the
   // frame the next step_frame() steps; its substeps move the colliders linearly from where they are to
@@ -214,18 +217,24 @@ class Solver {
       while (next_pass < P && (long(next_pass) * I) / P == it) collision_pass();
       timed("weft::constraints", schedule_.seconds_constraints, [&] {
         const real omega = chebyshev_omega(it);
-        if (chebyshev_on() && it + 1 >= st_.chebyshev_delay)
+        if (chebyshev_on() && it + 1 >= st_.chebyshev_delay) {
           Kokkos::parallel_for("weft::chebyshev_save", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
-                               kernels::ChebyshevSave<Mem>{state_.x, cheb_xk_, cheb_xkm1_});
+                               kernels::ChebyshevSave<Mem, Vec3>{state_.x, cheb_xk_, cheb_xkm1_});
+          Kokkos::parallel_for("weft::chebyshev_save_lambda", Kokkos::RangePolicy<Exec>(exec_, 0, lambda_.extent(0)),
+                               kernels::ChebyshevSave<Mem, real>{lambda_, cheb_lk_, cheb_lkm1_});
+        }
         gauss_seidel_sweep(h);
         if (omega != 1) {
           Kokkos::parallel_for("weft::chebyshev_blend", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
-                               kernels::ChebyshevBlend<Mem>{state_.x, cheb_xkm1_, state_.w, omega});
+                               kernels::ChebyshevBlend<Mem>{state_.x, cheb_xk_, cheb_xkm1_, cheb_xc_, state_.w, omega});
+          Kokkos::parallel_for("weft::chebyshev_blend_lambda", Kokkos::RangePolicy<Exec>(exec_, 0, lambda_.extent(0)),
+                               kernels::ChebyshevBlendLambda<Mem>{lambda_, cheb_lkm1_, omega});
           // Tethers are limits, not targets: the blend must not leave a point past its tether.
           if (tethers_.extent(0) > 0)
             Kokkos::parallel_for("weft::project_tethers", Kokkos::RangePolicy<Exec>(exec_, 0, tethers_.extent(0)),
                                  kernels::ProjectTethers<Mem>{tethers_, state_.x});
         }
+        if (cheb_xc_.extent(0) > 0 && it + 1 >= st_.chebyshev_delay) Kokkos::deep_copy(exec_, cheb_xc_, state_.x);
       });
       if (!collision_) continue;
       timed("weft::contacts", schedule_.seconds_contacts, [&] { collision_->project(state_, h); });
@@ -482,6 +491,10 @@ class Solver {
     upload_packed(rows, material, by_place, std::make_integer_sequence<int, kRowKinds>{});
     tethers_ = upload<Mem>(build_tethers(sc, w_host_), "weft::tethers");
     lambda_ = View<real*>("weft::lambda", nr);
+    if (chebyshev_on()) {
+      cheb_lk_ = View<real*>("weft::chebyshev_lk", nr);
+      cheb_lkm1_ = View<real*>("weft::chebyshev_lkm1", nr);
+    }
     tri_rest_ = upload<Mem>(triangle_rest_shapes(sc), "weft::triangle_rest");
     row_scratch_ = View<real*>("weft::row_scratch", std::max(nr, tri_rest_.extent(0)));
     // Jacobi gather lists: for each point, the (row, slot) entries that move it, in colour order (the
@@ -550,6 +563,8 @@ class Solver {
   View<Vec3*> collider_frame_start_, collider_frame_end_;  // streamed: the colliders at the frame's start and end
   View<Vec3*> row_delta_;
   View<Vec3*> cheb_xk_, cheb_xkm1_;  // Chebyshev: the iterates at the start of this and of the last iteration
+  View<real*> cheb_lk_, cheb_lkm1_;  // and the rows' multipliers then
+  View<Vec3*> cheb_xc_;  // with a collision stage: the points as the last sweep left them, before the contacts
   View<long*> point_slot_offset_, point_slot_;
   std::unique_ptr<CollisionStage<Exec>> collision_;
   ScheduleStats schedule_;  // the frame in progress

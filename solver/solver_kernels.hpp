@@ -121,23 +121,38 @@ struct ProjectRows {
 // Chebyshev semi-iterative acceleration (Wang 2015) of a substep's iterations. Before a sweep: the iterate
 // before the last moves to xkm1, the current one to xk. After it: each moving point goes to
 // xkm1 + omega (x - xkm1), past the sweep's result along the last two iterations' direction.
-template <class Mem>
+template <class Mem, class T>
 struct ChebyshevSave {
-  Kokkos::View<Vec3*, Mem> x, xk, xkm1;
+  Kokkos::View<T*, Mem> x, xk, xkm1;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     xkm1(i) = xk(i);
     xk(i) = x(i);
   }
 };
 
+// Points with w > 0 only (the others follow their animation). With a collision stage, a point its contacts
+// or its bound moved after the last sweep (it starts this iteration elsewhere than that sweep left it, xc)
+// keeps the sweep's result: extrapolating a contact's push would carry the point into what it touches.
 template <class Mem>
 struct ChebyshevBlend {
-  Kokkos::View<Vec3*, Mem> x, xkm1;
+  Kokkos::View<Vec3*, Mem> x, xk, xkm1, xc;  // xc: empty without a collision stage
   Kokkos::View<real*, Mem> w;
   real omega;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
-    if (w(i) > 0) x(i) = xkm1(i) + omega * (x(i) - xkm1(i));
+    if (!(w(i) > 0)) return;
+    if (xc.extent(0) > 0 && !(xk(i).x == xc(i).x && xk(i).y == xc(i).y && xk(i).z == xc(i).z)) return;
+    x(i) = xkm1(i) + omega * (x(i) - xkm1(i));
   }
+};
+
+// The rows' multipliers by the same weight as the points: XPBD keeps x - x_predicted = M^-1 grad C^T lambda
+// over a substep's iterations, and a blend of the points alone would break it, so that compliant rows
+// settle at the wrong stretch.
+template <class Mem>
+struct ChebyshevBlendLambda {
+  Kokkos::View<real*, Mem> lambda, lkm1;
+  real omega;
+  KOKKOS_INLINE_FUNCTION void operator()(long r) const { lambda(r) = lkm1(r) + omega * (lambda(r) - lkm1(r)); }
 };
 
 // Every tether at once: each moves only its own point, towards a point that does not move.

@@ -8,8 +8,8 @@ namespace {
 using weft::real;
 using weft::Vec3;
 
-// Two triangles sharing edge 2-3, with no gravity.
-weft::Scene hinge_scene() {
+// Two triangles sharing edge 2-3, with no gravity; Chebyshev acceleration at chebyshev_rho.
+weft::Scene hinge_scene(real chebyshev_rho) {
   weft::Scene s = weft::test::empty_scene("test-hinge");
   const std::vector<Vec3> x = {{0, 0, -1}, {0.2, 0.3, 1}, {-1, 0, 0}, {1, 0, 0}};
   for (const Vec3& p : x) {
@@ -26,6 +26,7 @@ weft::Scene hinge_scene() {
   s.triangles = {{0, 2, 3}, {1, 3, 2}};
   s.settings.gravity = {0, 0, 0};
   s.settings.iterations = 50;
+  s.settings.chebyshev_rho = chebyshev_rho;
   return s;
 }
 
@@ -34,37 +35,37 @@ std::vector<Vec3> settle(const weft::Scene& s, int frames = 24) {
   return weft::test::run_frames<Exec>(s, frames);
 }
 
-TEST(WEFT_TEST_SUITE, each_constraint_alone_reaches_rest) {
+void expect_each_constraint_alone_reaches_rest(real chebyshev_rho) {
   using Exec = WEFT_TEST_EXECSPACE;
   const auto rigid = weft::xpbd_material(1.0 / 0.0, -1, 0);
   {
-    weft::Scene s = hinge_scene();
+    weft::Scene s = hinge_scene(chebyshev_rho);
     s.constraints.distance.push_back({2, 3, 1.5, rigid});
     const auto x = settle<Exec>(s);
     EXPECT_NEAR(weft::norm(x[3] - x[2]), 1.5, 1e-9);
   }
   {
-    weft::Scene s = hinge_scene();
+    weft::Scene s = hinge_scene(chebyshev_rho);
     const real rest = 30 * weft::pi / 180;
     s.constraints.bend.push_back({0, 1, 2, 3, rest, rigid});
     const auto x = settle<Exec>(s);
     EXPECT_NEAR(weft::bend_rest_angle(x[0], x[1], x[2], x[3]), rest, 1e-9);
   }
   {
-    weft::Scene s = hinge_scene();
+    weft::Scene s = hinge_scene(chebyshev_rho);
     s.constraints.pin.push_back({1, {0.5, 0.5, 0.5}, -1, 0, rigid});
     const auto x = settle<Exec>(s);
     EXPECT_LT(weft::norm(x[1] - Vec3{0.5, 0.5, 0.5}), 1e-9);
   }
   {
-    weft::Scene s = hinge_scene();
+    weft::Scene s = hinge_scene(chebyshev_rho);
     weft::PtPrimConstraint q{1, {2, 3, -1, -1}, {0.25, 0.75, 0, 0}, 2, 0.2, rigid};
     s.constraints.ptprim.push_back(q);
     const auto x = settle<Exec>(s);
     EXPECT_NEAR(weft::norm(0.25 * x[2] + 0.75 * x[3] - x[1]), 0.2, 1e-9);
   }
   {  // triangle stretch: a stretched triangle returns to its rest shape
-    weft::Scene s = hinge_scene();
+    weft::Scene s = hinge_scene(chebyshev_rho);
     weft::TriarapConstraint t{0, 2, 3, {0, 0, 0, 0}, 0, false, rigid};
     weft::triarap_rest(Vec3{0, 0, -0.5}, Vec3{-0.5, 0, 0}, Vec3{0.5, 0, 0}, t.dm_inv, t.area);
     s.constraints.triarap.push_back(t);
@@ -73,7 +74,7 @@ TEST(WEFT_TEST_SUITE, each_constraint_alone_reaches_rest) {
     EXPECT_NEAR(weft::norm(x[0] - x[2]), std::sqrt(0.5), 1e-7);
   }
   {  // attach to a collider triangle (static)
-    weft::Scene s = hinge_scene();
+    weft::Scene s = hinge_scene(chebyshev_rho);
     weft::Collider c;
     c.name = "plate";
     c.triangles = {{0, 1, 2}};
@@ -86,6 +87,11 @@ TEST(WEFT_TEST_SUITE, each_constraint_alone_reaches_rest) {
     EXPECT_LT(x[0].y, 2.0);
   }
 }
+
+TEST(WEFT_TEST_SUITE, each_constraint_alone_reaches_rest) { expect_each_constraint_alone_reaches_rest(0); }
+
+// The blend carries the rows' multipliers along with the points: compliance-0 rows still reach rest.
+TEST(WEFT_TEST_SUITE, each_constraint_alone_reaches_rest_with_chebyshev) { expect_each_constraint_alone_reaches_rest(0.95); }
 
 // The 6 x 6 FEM sheet of Young's modulus `young`, pinned at two corners, after 48 frames.
 template <class Exec>

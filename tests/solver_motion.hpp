@@ -57,7 +57,9 @@ TEST(WEFT_TEST_SUITE, hanging_sheet_comes_to_rest) {
 // A grid of equal masses hanging from its top row, with only vertical and horizontal distance constraints:
 // every column carries the weight below it, so at rest the top edge of a column is stretched by
 // (number of points below) m g / k.
-TEST(WEFT_TEST_SUITE, stretch_under_gravity_matches_stiffness) {
+// With Chebyshev acceleration as well: it blends the rows' multipliers with the points, so compliant rows
+// settle where plain Gauss-Seidel does.
+void expect_stretch_matches_stiffness(real chebyshev_rho) {
   using Exec = WEFT_TEST_EXECSPACE;
   const int nx = 4, ny = 6;
   const real L = 0.1, k = 200.0, m = 0.01;
@@ -83,6 +85,7 @@ TEST(WEFT_TEST_SUITE, stretch_under_gravity_matches_stiffness) {
     }
   s.settings.velocity_damping = 5;
   s.settings.iterations = 50;
+  s.settings.chebyshev_rho = chebyshev_rho;
   weft::SimulationOn<Exec> sim(s);
   for (int f = 0; f < 10 * 24; ++f) sim.step_frame();
   const auto x = sim.positions();
@@ -93,6 +96,10 @@ TEST(WEFT_TEST_SUITE, stretch_under_gravity_matches_stiffness) {
     EXPECT_NEAR(got, expect, 0.01 * (expect - L)) << "row " << j;
   }
 }
+
+TEST(WEFT_TEST_SUITE, stretch_under_gravity_matches_stiffness) { expect_stretch_matches_stiffness(0); }
+
+TEST(WEFT_TEST_SUITE, stretch_under_gravity_matches_stiffness_with_chebyshev) { expect_stretch_matches_stiffness(0.95); }
 
 void expect_stable(weft::Scene s, int frames) {
   using Exec = WEFT_TEST_EXECSPACE;
