@@ -20,10 +20,10 @@
 #include "collision/representative.hpp"
 #include "core/device_copy.hpp"
 #include "core/stage_timer.hpp"
+#include "core/topology.hpp"
 #include "scene/collider_set.hpp"
 #include "scene/scene.hpp"
 
-#include <map>
 #include <optional>
 
 namespace weft {
@@ -99,7 +99,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     collider_margin_ = upload<Mem>(tmargin, "weft::collider_margin");
     collider_tris_ = upload_table<Mem>(cs.triangles, "weft::collider_tris");
     collider_rmask_ = upload<Mem>(representative_features(cs.triangles, cs.vertices()), "weft::collider_rmask");
-    collider_nb_ = upload_neighbours(cs.triangles);
+    collider_nb_ = upload_table<Mem>(triangle_neighbours(cs.triangles), "weft::collider_neighbours");
     collider_boxes_ = View<Aabb*>("weft::collider_boxes", cs.triangles.size());
   }
 
@@ -336,19 +336,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
     return s;
   }
   // The triangle across each edge (corner k to k+1) of a collider mesh, -1 on a boundary.
-  View<int* [3]> upload_neighbours(const std::vector<std::array<int, 3>>& t) const {
-    std::map<std::pair<int, int>, std::vector<int>> edges;
-    for (int i = 0; i < int(t.size()); ++i)
-      for (int k = 0; k < 3; ++k) edges[{std::min(t[i][k], t[i][(k + 1) % 3]), std::max(t[i][k], t[i][(k + 1) % 3])}].push_back(i);
-    std::vector<std::array<int, 3>> nb(t.size(), {-1, -1, -1});
-    for (int i = 0; i < int(t.size()); ++i)
-      for (int k = 0; k < 3; ++k) {
-        const auto& tri = edges[{std::min(t[i][k], t[i][(k + 1) % 3]), std::max(t[i][k], t[i][(k + 1) % 3])}];
-        for (int o : tri)
-          if (o != i) { nb[i][k] = o; break; }
-      }
-    return upload_table<Mem>(nb, "weft::collider_neighbours");
-  }
 
  public:
   // Swept boxes from each side's xs to x: cloth boxes inflated by `cloth_margin` (per triangle), collider
