@@ -303,7 +303,7 @@ class BodyCleaner {
       : scene_(s), settings_(cs), mesh_(make_body_mesh(s.colliders)), body_bvh_(exec_) {
     using namespace body_cleaning_detail;
     const long nv = mesh_.vertices();
-    tris_ = upload_table<Mem>(mesh_.tris, "weft::body_tris");
+    tris_ = upload_table<Mem>(mesh_.triangles, "weft::body_tris");
     vt_offsets_ = upload<Mem>(mesh_.vt_offsets, "weft::body_vt_offsets");
     vt_tris_ = upload<Mem>(mesh_.vt_tris, "weft::body_vt_tris");
     closed_ = upload<Mem>(mesh_.closed, "weft::body_closed");
@@ -320,19 +320,19 @@ class BodyCleaner {
     push_ = View<real*>("weft::gap_push", nv);
     bary_ = View<Vec3*>("weft::gap_bary", nv);
     dist_ = View<real*>("weft::body_dist", nv);
-    boxes_ = View<Aabb*>("weft::body_boxes", mesh_.tris.size());
+    boxes_ = View<Aabb*>("weft::body_boxes", mesh_.triangles.size());
   }
 
   BodyCleaning run() {
     BodyCleaning out;
     out.colliders = scene_.colliders;
-    if (mesh_.vertices() == 0 || mesh_.tris.empty()) return out;
+    if (mesh_.vertices() == 0 || mesh_.triangles.empty()) return out;
     reserve_thickness(out);
     std::vector<std::vector<Vec3>> cleaned(mesh_.frames);
     for (int f = 0; f < mesh_.frames; ++f) {
       FrameCleaning fc;
       fc.frame = scene_.settings.frame_start + f;
-      cleaned[f] = clean_frame(body_positions(scene_.colliders, mesh_, f), fc);
+      cleaned[f] = clean_frame(collider_positions(scene_.colliders, mesh_, f), fc);
       out.frames.push_back(fc);
     }
     write_colliders(cleaned, out.colliders);
@@ -360,7 +360,7 @@ class BodyCleaner {
 
   void reserve_thickness(BodyCleaning& out) {
     using namespace body_cleaning_detail;
-    set_positions(body_positions(scene_.colliders, mesh_, 0));
+    set_positions(collider_positions(scene_.colliders, mesh_, 0));
     prepare();
     if (!scene_.triangles.empty()) {
       const ClothLayers layers = make_cloth_layers(scene_);

@@ -33,40 +33,23 @@ void check_collider_orientation(const Scene& s) {
 
 BodyMesh make_body_mesh(const std::vector<Collider>& colliders) {
   BodyMesh b;
-  int off = 0;
-  for (const Collider& c : colliders) {
-    const bool closed = is_closed_surface(c.triangles);
-    b.first_vertex.push_back(off);
-    for (const auto& t : c.triangles) {
-      b.tris.push_back({t[0] + off, t[1] + off, t[2] + off});
-      b.closed.push_back(closed ? 1 : 0);
-      b.triangle_thickness.push_back(c.thickness);
-    }
-    const int nv = int(c.motion.frames[0].size());
-    b.vertex_thickness.insert(b.vertex_thickness.end(), nv, c.thickness);
-    off += nv;
-    b.frames = std::max(b.frames, int(c.motion.frames.size()));
+  static_cast<ColliderSet&>(b) = make_collider_set(colliders);
+  std::vector<uint8_t> closed(colliders.size());
+  for (size_t k = 0; k < colliders.size(); ++k) closed[k] = is_closed_surface(colliders[k].triangles) ? 1 : 0;
+  for (int c : b.triangle_collider) {
+    b.closed.push_back(closed[size_t(c)]);
+    b.triangle_thickness.push_back(colliders[size_t(c)].thickness);
   }
-  b.first_vertex.push_back(off);
-  b.vt_offsets.assign(off + 1, 0);
-  for (const auto& t : b.tris)
+  const int nv = b.vertices();
+  b.vt_offsets.assign(size_t(nv) + 1, 0);
+  for (const auto& t : b.triangles)
     for (int k = 0; k < 3; ++k) ++b.vt_offsets[t[k] + 1];
-  for (int v = 0; v < off; ++v) b.vt_offsets[v + 1] += b.vt_offsets[v];
-  b.vt_tris.resize(b.vt_offsets[off]);
+  for (int v = 0; v < nv; ++v) b.vt_offsets[v + 1] += b.vt_offsets[v];
+  b.vt_tris.resize(b.vt_offsets[nv]);
   std::vector<int> fill(b.vt_offsets.begin(), b.vt_offsets.end() - 1);
-  for (int t = 0; t < int(b.tris.size()); ++t)  // ascending triangle order around every vertex
-    for (int k = 0; k < 3; ++k) b.vt_tris[fill[b.tris[t][k]]++] = t;
+  for (int t = 0; t < int(b.triangles.size()); ++t)  // ascending triangle order around every vertex
+    for (int k = 0; k < 3; ++k) b.vt_tris[fill[b.triangles[t][k]]++] = t;
   return b;
-}
-
-std::vector<Vec3> body_positions(const std::vector<Collider>& colliders, const BodyMesh& body, int f) {
-  std::vector<Vec3> x;
-  x.reserve(body.vertices());
-  for (const Collider& c : colliders) {
-    const auto& frame = c.motion.frames[std::min<size_t>(f, c.motion.frames.size() - 1)];
-    x.insert(x.end(), frame.begin(), frame.end());
-  }
-  return x;
 }
 
 ClothLayers make_cloth_layers(const Scene& s) {

@@ -2,6 +2,7 @@
 // all colliders, with the triangles around each vertex and which triangles bound a closed collider, and
 // the cloth triangles' layers as bits with each layer's thickness.
 #pragma once
+#include "scene/collider_set.hpp"
 #include "scene/scene.hpp"
 
 #include <array>
@@ -10,20 +11,14 @@
 
 namespace weft {
 
-struct BodyMesh {
-  std::vector<std::array<int, 3>> tris;  // every collider's triangles over the concatenated vertices
-  std::vector<int> first_vertex;         // per collider, then the vertex count
+// The collider set with what the check needs beside it.
+struct BodyMesh : ColliderSet {
   std::vector<int> vt_offsets, vt_tris;  // triangles around vertex v: vt_tris[vt_offsets[v] .. vt_offsets[v+1])
   std::vector<uint8_t> closed;           // per triangle: its collider is a closed surface (parity applies)
-  std::vector<real> vertex_thickness, triangle_thickness;  // the collider's thickness
-  int frames = 0;                        // the longest collider animation (shorter ones hold their last frame)
-  int vertices() const { return first_vertex.empty() ? 0 : first_vertex.back(); }
+  std::vector<real> triangle_thickness;  // per triangle, its collider's thickness
 };
 
 BodyMesh make_body_mesh(const std::vector<Collider>& colliders);
-
-// All colliders' positions at body frame f (0-based).
-std::vector<Vec3> body_positions(const std::vector<Collider>& colliders, const BodyMesh& body, int f);
 
 // Six times the volume a closed surface encloses: negative when its triangles face inward.
 real signed_volume6(const std::vector<Vec3>& x, const std::vector<std::array<int, 3>>& tris);

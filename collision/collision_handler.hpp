@@ -20,9 +20,10 @@
 #include "collision/representative.hpp"
 #include "core/device_copy.hpp"
 #include "core/stage_timer.hpp"
+#include "core/topology.hpp"
+#include "scene/collider_set.hpp"
 #include "scene/scene.hpp"
 
-#include <map>
 #include <optional>
 
 namespace weft {
@@ -88,25 +89,18 @@ class CollisionHandler final : public CollisionStage<Exec> {
                       bound_settings_);
     }
     cloth_boxes_ = View<Aabb*>("weft::cloth_boxes", s.triangles.size());
-    // Collider side: all colliders' triangles over the concatenated vertices, each vertex with its collider's
-    // thickness and friction; a collider triangle's boxes grow by its contact reach.
-    std::vector<std::array<int, 3>> ct;
-    std::vector<real> vth, vfr, tmargin;
-    int off = 0;
-    for (const Collider& c : s.colliders) {
-      for (const auto& t : c.triangles) ct.push_back({t[0] + off, t[1] + off, t[2] + off});
-      off += int(c.motion.frames[0].size());
-      vth.resize(size_t(off), c.thickness);
-      vfr.resize(size_t(off), c.friction);
-      tmargin.resize(ct.size(), ns_.detect_scale * c.thickness);
-    }
-    collider_th_ = upload<Mem>(vth, "weft::collider_thickness");
-    collider_fr_ = upload<Mem>(vfr, "weft::collider_friction");
+    // Collider side: the collider set, each vertex with its collider's thickness and friction; a collider
+    // triangle's boxes grow by its contact reach.
+    const ColliderSet cs = make_collider_set(s.colliders);
+    std::vector<real> tmargin;
+    for (int c : cs.triangle_collider) tmargin.push_back(ns_.detect_scale * s.colliders[size_t(c)].thickness);
+    collider_th_ = upload<Mem>(cs.vertex_thickness, "weft::collider_thickness");
+    collider_fr_ = upload<Mem>(cs.vertex_friction, "weft::collider_friction");
     collider_margin_ = upload<Mem>(tmargin, "weft::collider_margin");
-    collider_tris_ = upload_table<Mem>(ct, "weft::collider_tris");
-    collider_rmask_ = upload<Mem>(representative_features(ct, off), "weft::collider_rmask");
-    collider_nb_ = upload_neighbours(ct);
-    collider_boxes_ = View<Aabb*>("weft::collider_boxes", ct.size());
+    collider_tris_ = upload_table<Mem>(cs.triangles, "weft::collider_tris");
+    collider_rmask_ = upload<Mem>(representative_features(cs.triangles, cs.vertices()), "weft::collider_rmask");
+    collider_nb_ = upload_table<Mem>(triangle_neighbours(cs.triangles), "weft::collider_neighbours");
+    collider_boxes_ = View<Aabb*>("weft::collider_boxes", cs.triangles.size());
   }
 
   // The sums start anew; the last pass's contacts and the last substep's impact zones carry over until
@@ -342,19 +336,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
     return s;
   }
   // The triangle across each edge (corner k to k+1) of a collider mesh, -1 on a boundary.
-  View<int* [3]> upload_neighbours(const std::vector<std::array<int, 3>>& t) const {
-    std::map<std::pair<int, int>, std::vector<int>> edges;
-    for (int i = 0; i < int(t.size()); ++i)
-      for (int k = 0; k < 3; ++k) edges[{std::min(t[i][k], t[i][(k + 1) % 3]), std::max(t[i][k], t[i][(k + 1) % 3])}].push_back(i);
-    std::vector<std::array<int, 3>> nb(t.size(), {-1, -1, -1});
-    for (int i = 0; i < int(t.size()); ++i)
-      for (int k = 0; k < 3; ++k) {
-        const auto& tri = edges[{std::min(t[i][k], t[i][(k + 1) % 3]), std::max(t[i][k], t[i][(k + 1) % 3])}];
-        for (int o : tri)
-          if (o != i) { nb[i][k] = o; break; }
-      }
-    return upload_table<Mem>(nb, "weft::collider_neighbours");
-  }
 
  public:
   // Swept boxes from each side's xs to x: cloth boxes inflated by `cloth_margin` (per triangle), collider

@@ -7,7 +7,7 @@ int row_particles(const Row& r, int (&out)[8]) {
   return r.n;
 }
 
-std::vector<Row> build_rows(const Scene& s, const std::vector<int>& collider_offset) {
+std::vector<Row> build_rows(const Scene& s, const std::vector<int>& collider_first_vertex) {
   const Constraints& c = s.constraints;
   std::vector<Row> rows;
   rows.reserve(c.size() + c.fem.size());
@@ -40,7 +40,7 @@ std::vector<Row> build_rows(const Scene& s, const std::vector<int>& collider_off
   for (const auto& a : c.attach) {
     Row r; r.kind = kRowAttach; r.n = 1; r.idx[0] = a.p; r.rest = a.rest; r.m = a.m;
     const auto& tri = s.colliders[a.collider].triangles[a.tri];
-    for (int k = 0; k < 3; ++k) r.cidx[k] = collider_offset[a.collider] + tri[k];
+    for (int k = 0; k < 3; ++k) r.cidx[k] = collider_first_vertex[a.collider] + tri[k];
     r.data[0] = a.u; r.data[1] = a.v;
     rows.push_back(r);
   }

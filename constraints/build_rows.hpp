@@ -7,8 +7,9 @@
 
 namespace weft {
 
-// collider_offset[c] is the first vertex of collider c in the concatenated collider vertex array.
-std::vector<Row> build_rows(const Scene& s, const std::vector<int>& collider_offset);
+// collider_first_vertex: ColliderSet::first_vertex (scene/collider_set.hpp), where attachments find their
+// collider triangle's vertices.
+std::vector<Row> build_rows(const Scene& s, const std::vector<int>& collider_first_vertex);
 
 // The particles a row moves (for colouring).
 int row_particles(const Row& r, int (&out)[8]);

@@ -34,6 +34,25 @@ Topology build_topology(const std::vector<std::array<int, 3>>& tris) {
   return topo;
 }
 
+int Topology::edge_index(int a, int b) const {
+  const std::array<int, 2> key{std::min(a, b), std::max(a, b)};
+  const auto it = std::lower_bound(edges.begin(), edges.end(), key);
+  return it != edges.end() && *it == key ? int(it - edges.begin()) : -1;
+}
+
+std::vector<std::array<int, 3>> triangle_neighbours(const std::vector<std::array<int, 3>>& tris) {
+  const Topology topo = build_topology(tris);
+  std::vector<std::array<int, 3>> nb(tris.size(), {-1, -1, -1});
+  for (int t = 0; t < int(tris.size()); ++t)
+    for (int k = 0; k < 3; ++k)
+      for (int o : topo.edge_triangles[size_t(topo.edge_index(tris[t][k], tris[t][(k + 1) % 3]))])
+        if (o >= 0 && o != t) {
+          nb[t][k] = o;
+          break;
+        }
+  return nb;
+}
+
 std::vector<real> lumped_masses(const std::vector<Vec3>& x, const std::vector<std::array<int, 3>>& tris,
                                 real density) {
   std::vector<real> m(x.size(), 0.0);

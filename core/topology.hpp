@@ -14,7 +14,12 @@ struct Topology {
   std::vector<std::array<int, 4>> bend_quads;
   std::vector<int> boundary_edges;                 // edges with one triangle
   std::vector<int> nonmanifold_edges;              // edges with more than two triangles
+  int edge_index(int a, int b) const;              // the edge between points a and b (either order), or -1
 };
+
+// Per triangle and corner k, the triangle across its edge (corner k, corner k + 1): the lowest-numbered other
+// triangle on that edge, or -1 on a boundary.
+std::vector<std::array<int, 3>> triangle_neighbours(const std::vector<std::array<int, 3>>& triangles);
 
 Topology build_topology(const std::vector<std::array<int, 3>>& triangles);
 

@@ -1,6 +1,7 @@
 #include "io/contact_sheet.hpp"
 
 #include "io/trimesh.hpp"
+#include "scene/collider_set.hpp"
 
 #include <cairo.h>
 
@@ -328,26 +329,16 @@ SheetContent cache_sheet(const CacheReader& cache, const Scene* scene, int first
     for (const auto& t : h.triangles) c.triangle_colour.push_back(scene->points.layer[t[0]]);
   else
     c.triangle_colour = triangle_pieces(h.triangles, h.points);
-  // Colliders concatenated; their animations start at the run's first frame and hold their last frame.
-  if (scene) {
-    int off = 0;
-    for (const Collider& col : scene->colliders) {
-      for (const auto& t : col.triangles) c.collider_triangles.push_back({t[0] + off, t[1] + off, t[2] + off});
-      off += col.motion.frames.empty() ? 0 : int(col.motion.frames[0].size());
-    }
-  }
+  // The collider set; its animations start at the run's first frame and hold their last frame.
+  const ColliderSet colliders = scene ? make_collider_set(scene->colliders) : ColliderSet{};
+  c.collider_triangles = colliders.triangles;
   count = std::max(1, std::min(count, last - first + 1));
   for (int i = 0; i < count; ++i) {
     const int frame = count == 1 ? last : first + int((long(last - first) * i + (count - 1) / 2) / (count - 1));
     SheetFrame f;
     f.frame = frame;
     f.cloth = cache.positions(frame - stored.front());  // stored frames are consecutive from the first
-    if (scene)
-      for (const Collider& col : scene->colliders) {
-        if (col.motion.frames.empty()) continue;
-        const int k = std::clamp(frame - h.settings.frame_start, 0, int(col.motion.frames.size()) - 1);
-        f.collider.insert(f.collider.end(), col.motion.frames[k].begin(), col.motion.frames[k].end());
-      }
+    if (scene) f.collider = collider_positions(scene->colliders, colliders, std::max(0, frame - h.settings.frame_start));
     c.frames.push_back(std::move(f));
   }
   return c;

@@ -14,6 +14,7 @@
 #include "core/kokkos_compat.hpp"
 #include "core/reduce.hpp"
 #include "core/stage_timer.hpp"
+#include "scene/collider_set.hpp"
 #include "scene/scene.hpp"
 #include "solver/frame_stats.hpp"
 #include "solver/solver_kernels.hpp"
@@ -76,12 +77,11 @@ class Solver {
   }
   // The same for collider `collider` of the scene alone; the others keep their last streamed positions.
   void set_collider_frame(int collider, const std::vector<Vec3>& x) {
-    const int nc = int(collider_offset_.size());
+    const int nc = int(collider_first_vertex_.size()) - 1;
     if (collider < 0 || collider >= nc)
       throw InputError("collider " + std::to_string(collider) + " does not exist: the scene has " + std::to_string(nc) +
                        " colliders");
-    const long begin = collider_offset_[size_t(collider)];
-    const long end = collider + 1 < nc ? collider_offset_[size_t(collider) + 1] : long(state_.collider_x.extent(0));
+    const long begin = collider_first_vertex_[size_t(collider)], end = collider_first_vertex_[size_t(collider) + 1];
     if (long(x.size()) != end - begin)
       throw InputError("frame of collider " + std::to_string(collider) + " has " + std::to_string(x.size()) +
                        " vertices, the collider " + std::to_string(end - begin));
@@ -412,22 +412,12 @@ class Solver {
     kernels::interpolate_animation(exec_, target_frames_, targets_, 0.0);
     kin_point_ = upload<Mem>(sc.kinematic_point, "weft::kin_point");
     kin_target_ = upload<Mem>(sc.kinematic_target, "weft::kin_target");
-    // All colliders' vertices, concatenated; frames padded by holding each collider's last frame.
-    Animation all;
-    size_t nf = 0;
-    for (const Collider& c : sc.colliders) nf = c.motion.frames.size() > nf ? c.motion.frames.size() : nf;
-    all.frames.resize(nf);
-    collider_offset_.clear();
-    int offset = 0;
-    for (const Collider& c : sc.colliders) {
-      collider_offset_.push_back(offset);
-      for (size_t f = 0; f < nf; ++f) {
-        const auto& src = c.motion.frames[f < c.motion.frames.size() ? f : c.motion.frames.size() - 1];
-        all.frames[f].insert(all.frames[f].end(), src.begin(), src.end());
-      }
-      offset += int(c.motion.frames[0].size());
-    }
-    collider_frames_ = upload_frames<Mem>(all.frames, "weft::collider_frames");
+    // The collider set's vertices at every stored frame; shorter animations hold their last frame.
+    const ColliderSet cs = make_collider_set(sc.colliders);
+    std::vector<std::vector<Vec3>> frames(size_t(cs.frames));
+    for (int f = 0; f < cs.frames; ++f) frames[size_t(f)] = collider_positions(sc.colliders, cs, f);
+    collider_first_vertex_ = cs.first_vertex;
+    collider_frames_ = upload_frames<Mem>(frames, "weft::collider_frames");
     state_.collider_x = View<Vec3*>("weft::collider_x", collider_frames_.extent(1));
     state_.collider_x_start = View<Vec3*>("weft::collider_x_start", collider_frames_.extent(1));
     kernels::interpolate_animation(exec_, collider_frames_, state_.collider_x, 0.0);
@@ -447,7 +437,7 @@ class Solver {
   }
 
   void upload_rows(const Scene& sc) {
-    const std::vector<Row> rows = build_rows(sc, collider_offset_);
+    const std::vector<Row> rows = build_rows(sc, collider_first_vertex_);
     const size_t n = sc.points.size(), nr = rows.size();
     std::vector<char> movable(n);
     for (size_t i = 0; i < n; ++i) movable[i] = w_host_[i] > 0;
@@ -558,7 +548,7 @@ class Solver {
   View<Vec3**> target_frames_, collider_frames_;
   View<Vec3*> targets_, targets_before_;  // targets at the end and at the start of the substep
   View<int*> kin_point_, kin_target_;
-  std::vector<int> collider_offset_;  // each collider's first vertex in collider_x
+  std::vector<int> collider_first_vertex_;  // each collider's first vertex in collider_x, then their count
   bool colliders_streamed_ = false;   // set_collider_frame was called: colliders follow the streamed frames
   View<Vec3*> collider_frame_start_, collider_frame_end_;  // streamed: the colliders at the frame's start and end
   View<Vec3*> row_delta_;

@@ -57,4 +57,19 @@ TEST(WEFT_TEST_SUITE, invalid_scenes_are_rejected_naming_the_element) {
   expect_rejected(s, "point 2 has an invalid mass");
 }
 
+// Across each triangle's edge k (corner k to k + 1): the lowest other triangle, -1 on a boundary; three
+// triangles on one edge each see the lowest other one.
+TEST(WEFT_TEST_SUITE, triangle_neighbours_across_each_edge) {
+  const std::vector<std::array<int, 3>> t = {{0, 1, 2}, {2, 1, 3}, {1, 0, 4}, {0, 1, 5}};
+  const auto nb = weft::triangle_neighbours(t);
+  ASSERT_EQ(nb.size(), 4u);
+  EXPECT_EQ(nb[0], (std::array<int, 3>{2, 1, -1}));  // edge 0-1 also in 2 and 3: the lowest, 2
+  EXPECT_EQ(nb[1], (std::array<int, 3>{0, -1, -1}));
+  EXPECT_EQ(nb[2], (std::array<int, 3>{0, -1, -1}));
+  EXPECT_EQ(nb[3], (std::array<int, 3>{0, -1, -1}));
+  const weft::Topology topo = weft::build_topology(t);
+  EXPECT_EQ(topo.edges[size_t(topo.edge_index(1, 0))], (std::array<int, 2>{0, 1}));
+  EXPECT_EQ(topo.edge_index(3, 4), -1);
+}
+
 }  // namespace
