@@ -19,8 +19,8 @@ struct SolverSettings {
   int iterations = 20;                   // Gauss-Seidel constraint iterations per substep
   int collision_passes = 2;              // per substep, spread evenly over the iterations
   int smoothing_iterations = 0;          // Jacobi passes after Gauss-Seidel (Vellum "smoothing iterations")
-  real chebyshev_rho = 0;                // 0: off; else Chebyshev acceleration of a substep's iterations with this
-                                         // estimate of their convergence rate (Wang 2015; docs/solver.md)
+  real chebyshev_rho = 0.95;             // Chebyshev acceleration of a substep's iterations with this estimate of
+                                         // their convergence rate (Wang 2015; docs/solver.md); 0: off
   int chebyshev_delay = 4;               // iterations of a substep before the acceleration starts (>= 1)
   real tether_stretch = 0;               // 0: no tethers; else a point stays within this times its path length
                                          // at rest from the nearest hard-pinned point (constraints/tether.hpp)

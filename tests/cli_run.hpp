@@ -195,13 +195,17 @@ TEST(WEFT_TEST_SUITE, cli_chebyshev_setting_is_recorded_and_resumed) {
   WEFT_NEED_CLI();
   const ScratchDir dir("cli_chebyshev");
   Cli weft(dir);
-  const std::string run = kSheet + " --set chebyshev_rho=0.95 -o " + dir.file("c.h5");
+  const std::string run = kSheet + " --set chebyshev_rho=0.9 -o " + dir.file("c.h5");
   ASSERT_EQ(weft(run + " --frames 1-4"), 0) << weft.output;
   ASSERT_EQ(weft("info " + dir.file("c.h5")), 0) << weft.output;
-  EXPECT_NE(weft.output.find("Chebyshev rate 0.95 after 4 iterations"), std::string::npos) << weft.output;
+  EXPECT_NE(weft.output.find("Chebyshev rate 0.9 after 4 iterations"), std::string::npos) << weft.output;
   // A resume must repeat the run's --set: the refusal names it.
   EXPECT_EQ(weft(kSheet + " --frames 1-6 --resume -o " + dir.file("c.h5")), 2);
-  EXPECT_NE(weft.output.find("chebyshev_rho=0.95"), std::string::npos) << weft.output;
+  EXPECT_NE(weft.output.find("chebyshev_rho=0.9"), std::string::npos) << weft.output;
+  // Off is a setting like any other: recorded and shown.
+  ASSERT_EQ(weft(kSheet + " --frames 1-2 --set chebyshev_rho=0 -o " + dir.file("off.h5")), 0) << weft.output;
+  ASSERT_EQ(weft("info " + dir.file("off.h5")), 0) << weft.output;
+  EXPECT_NE(weft.output.find("Chebyshev off"), std::string::npos) << weft.output;
   ASSERT_EQ(weft(run + " --frames 1-6 --resume"), 0) << weft.output;
   EXPECT_NE(weft(kSheet + " --frames 1-2 --set chebyshev_rho=1.5"), 0);
   EXPECT_NE(weft.output.find("chebyshev_rho"), std::string::npos) << weft.output;
