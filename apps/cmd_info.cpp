@@ -22,7 +22,8 @@ std::string vec_string(Vec3 v) {
   return s.str();
 }
 
-void print_settings(const SolverSettings& s) {
+// fem_rows: the scene has FEM membrane rows, which run without Chebyshev acceleration (a cache does not say).
+void print_settings(const SolverSettings& s, bool fem_rows = false) {
   const CollisionSettings& c = s.collision;
   std::ostringstream tethers;
   if (s.tether_stretch > 0) tethers << s.tether_stretch;
@@ -30,6 +31,7 @@ void print_settings(const SolverSettings& s) {
   std::ostringstream chebyshev;  // the ccd model ignores the setting (docs/solver.md)
   if (s.chebyshev_rho <= 0) chebyshev << "off";
   else if (c.contact_model == ContactModel::Ccd) chebyshev << "off (ccd model)";
+  else if (fem_rows) chebyshev << "off (FEM membrane rows)";
   else chebyshev << "rate " << s.chebyshev_rho << " after " << s.chebyshev_delay << " iterations";
   std::cout << "settings: frames " << s.frame_start << "-" << s.frame_end << " at " << s.fps << " fps, substeps "
             << s.substeps << ", iterations " << s.iterations << ", collision passes " << s.collision_passes
@@ -69,7 +71,7 @@ void print_scene(const std::string& path) {
               << col.thickness << ", friction " << col.friction << "\n";
   }
   std::cout << "needs collisions " << (s.needs_collisions ? "yes" : "no") << "\n";
-  print_settings(s.settings);
+  print_settings(s.settings, !s.constraints.fem.empty());
 }
 
 void print_cache(const std::string& path) {

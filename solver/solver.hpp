@@ -44,6 +44,7 @@ class Solver {
 
   explicit Solver(const Scene& scene) : st_(scene.settings), frame_(scene.settings.frame_start) {
     validate_scene(scene);
+    fem_rows_ = !scene.constraints.fem.empty();
     upload_points(scene);
     upload_animation(scene);
     upload_rows(scene);
@@ -255,9 +256,10 @@ class Solver {
     if (collision_) timed("weft::impact_zones", schedule_.seconds_smoothing, [&] { collision_->end_substep(state_, h); });
   }
 
-  // Not with the ccd model: it stays the paper's solver, for comparison (docs/solver.md).
+  // Not with the ccd model: it stays the paper's solver, for comparison; not with FEM membrane rows, whose
+  // stable neo-Hookean pair it carries past their balance (docs/solver.md).
   bool chebyshev_on() const {
-    return st_.chebyshev_rho > 0 && st_.collision.contact_model == ContactModel::Proximity;
+    return st_.chebyshev_rho > 0 && !fem_rows_ && st_.collision.contact_model == ContactModel::Proximity;
   }
 
   // The Chebyshev weight of iteration `it` of a substep: 1 before the delay S, then 2 / (2 - rho^2) at S and
@@ -558,6 +560,7 @@ class Solver {
   View<long*> point_slot_offset_, point_slot_;
   std::unique_ptr<CollisionStage<Exec>> collision_;
   ScheduleStats schedule_;  // the frame in progress
+  bool fem_rows_ = false;   // the scene has FEM membrane rows
   std::optional<compat::Graph<Exec>> sweep_;  // gauss_seidel_sweep's kernels, for step h sweep_h_
   real sweep_h_ = 0;
   std::optional<compat::Graph<Exec>> smooth_;  // jacobi_sweep's kernels on the device, for step smooth_h_
