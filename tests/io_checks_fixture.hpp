@@ -3,6 +3,7 @@
 #pragma once
 #include "core/error.hpp"
 #include "io/houdini_geo.hpp"
+#include "tests/input_error_fixture.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,17 +16,6 @@
 namespace weft::test {
 
 inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-// The message of the InputError f throws; a test failure (and "") when it throws none.
-inline std::string input_error(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return "";
-}
 
 inline void expect_same_attributes(const io::AttributeMap& a, const io::AttributeMap& b, const std::string& cls) {
   ASSERT_EQ(a.size(), b.size()) << cls;

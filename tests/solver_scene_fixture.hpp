@@ -3,6 +3,7 @@
 #include "backends/simulation_on.hpp"
 #include "constraints/vellum_cloth.hpp"
 #include "io/procedural.hpp"
+#include "tests/input_error_fixture.hpp"
 
 namespace weft::test {
 
