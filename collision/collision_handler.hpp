@@ -75,6 +75,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     cloth_failsafe_margin_ = upload<Mem>(failsafe_margin, "weft::cloth_failsafe_margin");
     if (proximity_) {
       bound_settings_.animated_pins = !s.kinematic_point.empty() && s.pin_targets.frames.size() > 1;
+      bound_settings_.nearest_margins = settings_.nearest_margins;
       // A triangle's smallest query margin: an unfound pair keeps more than (1 - gamma)(m_A + m_B), at
       // least the contact reach of its points.
       std::vector<real> floor(s.triangles.size()), ceiling(s.triangles.size());

@@ -41,22 +41,19 @@ KOKKOS_INLINE_FUNCTION Vec3 wanted_position(const Points& x, const Deficit& defi
   return pending(i) ? deficit(i) : x(i);
 }
 
-// Per point, component k of the move it wants from X0 (its prediction, or the deficit left by the last
-// query; a pinned point's, to its target), 0 for the points not averaged: summed, the common translation
-// t. `pinned`: the pinned points are averaged, else the free points.
+// Per point, the move it wants from X0 (its prediction, or the deficit left by the last query; a pinned
+// point's, to its target), 0 for the points not averaged: summed, the common translation t. `pinned`: the
+// pinned points are averaged, else the free points.
 template <class Mem>
-struct WantedComponent {
+struct WantedMove {
   Kokkos::View<const Vec3*, Mem> x, x0, deficit;
   Kokkos::View<const int*, Mem> pending;
   Kokkos::View<const real*, Mem> w;
-  Kokkos::View<real*, Mem> out;
-  int k;
+  Kokkos::View<Vec3*, Mem> out;
   bool resume, pinned;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const bool free = w(i) > 0;
-    if (free == pinned) { out(i) = 0; return; }
-    const Vec3 d = wanted_position(x, deficit, pending, w, i, resume) - x0(i);
-    out(i) = k == 0 ? d.x : k == 1 ? d.y : d.z;
+    out(i) = free == pinned ? Vec3{0, 0, 0} : wanted_position(x, deficit, pending, w, i, resume) - x0(i);
   }
 };
 
@@ -88,18 +85,22 @@ struct PreparePoints {
 // triangles' margin), between the contact-reach floor and a ceiling (the triangle's longest edge, at
 // most twice the floor: a point's bound is held to gamma times its distance to its own mesh's next
 // features or the next layer, about that far, so a wider query would only add pairs); each corner keeps
-// the smallest margin of its triangles.
+// the smallest margin of its triangles. With `nearest`, nor does the margin grow past the farthest of its
+// corners' nearest features at the last query: a bound held by a nearer feature gains nothing from a wider
+// query, which only adds pairs (docs/collisions.md, "Query margins").
 template <class Mem>
 struct TriangleMargins {
   Kokkos::View<const int* [3], Mem> tris;
-  Kokkos::View<const real*, Mem> floor, ceiling, want;
+  Kokkos::View<const real*, Mem> floor, ceiling, want, near;
   Kokkos::View<real*, Mem> margin;
   Kokkos::View<Fixed*, Mem> qmin;
   real gamma;
+  bool nearest;
   KOKKOS_INLINE_FUNCTION void operator()(long t) const {
     const int a = tris(t, 0), b = tris(t, 1), c = tris(t, 2);
     const real wanted = max_(want(a), max_(want(b), want(c))) / gamma;
-    const real m = max_(floor(t), min_(wanted, ceiling(t)));
+    const real cap = nearest ? min_(ceiling(t), max_(near(a), max_(near(b), near(c)))) : ceiling(t);
+    const real m = max_(floor(t), min_(wanted, cap));
     margin(t) = m;
     const Fixed f = to_fixed(m);
     Kokkos::atomic_fetch_min(&qmin(a), f);
@@ -154,6 +155,14 @@ struct PairDistances {
     for (int k = 0; k < NA; ++k) fold(SA, pa[k], f);
     for (int k = 0; k < NB; ++k) fold(SB, pb[k], f);
   }
+  // On the host, a feature pair whose boxes are farther apart on some axis than both its reach and its
+  // contact limit is skipped before its distance: its result would be dropped (the pad covers the
+  // rounding, as narrow_detail::feature_reach's). On the GPU the extra registers cost more than the
+  // distances they spare (as in the narrow phase's feature_tests).
+  static constexpr bool kBoxes = Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
+  KOKKOS_INLINE_FUNCTION static bool beyond(const Aabb& a, const Aabb& b, real reach, real lim) {
+    return narrow_detail::apart(a, b, max_(reach, lim) * (1 + 1e-6) + 1e-9);
+  }
   KOKKOS_INLINE_FUNCTION real margin_of(const SideMesh<Mem>& S, int t) const {
     return S.collider ? detect_scale * narrow_detail::face_th(S, t) : margin(t);
   }
@@ -164,13 +173,15 @@ struct PairDistances {
                                           real reach) const {
     const int p = P.tris(TP, k), f[3] = {F.tris(TF, 0), F.tris(TF, 1), F.tris(TF, 2)};
     if (!P.collider && !F.collider && (p == f[0] || p == f[1] || p == f[2])) return false;
+    const real r = P.th(p) + narrow_detail::face_th(F, TF);
+    const real lim = ns.detect_scale * r;
+    if (kBoxes && beyond(Aabb{P.x(p), P.x(p)}, expand(expand(Aabb{F.x(f[0]), F.x(f[0])}, F.x(f[1])), F.x(f[2])), reach, lim))
+      return false;
     real u, v, s;
     const real d2 = point_triangle_distance2(P.x(p), F.x(f[0]), F.x(f[1]), F.x(f[2]), u, v, s);
     const real d = sqrt_(d2);
     const int pp[1] = {p};
-    const real r = P.th(p) + narrow_detail::face_th(F, TF);
     record(P, pp, F, f, d, reach, detect_scale * r);
-    const real lim = ns.detect_scale * r;
     return (d2 < lim * lim && narrow_detail::owns_closest_feature(F, TF, u, v, s)) || touches(d);
   }
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
@@ -197,13 +208,16 @@ struct PairDistances {
         if (!((rb >> (3 + kb)) & 1)) continue;
         const int eb[2] = {ib[kb], ib[(kb + 1) % 3]};
         if (!B.collider && narrow_detail::shares(ea[0], ea[1], eb[0], eb[1])) continue;
+        const real th = max_(A.th(ea[0]), A.th(ea[1])) + max_(B.th(eb[0]), B.th(eb[1]));
+        const real lim = ns.ee_detect_scale * th;
+        if (kBoxes && beyond(expand(Aabb{A.x(ea[0]), A.x(ea[0])}, A.x(ea[1])),
+                             expand(Aabb{B.x(eb[0]), B.x(eb[0])}, B.x(eb[1])), reach, lim))
+          continue;
         real s, t;
         const real d2 = segment_segment_distance2(A.x(ea[0]), A.x(ea[1]), B.x(eb[0]), B.x(eb[1]), s, t);
         const real d = sqrt_(d2);
-        const real th = max_(A.th(ea[0]), A.th(ea[1])) + max_(B.th(eb[0]), B.th(eb[1]));
         record(A, ea, B, eb, d, reach, detect_scale * th);
         if (!contacts) continue;
-        const real lim = ns.ee_detect_scale * th;
         const bool crossing_ok = !ns.self || narrow_detail::not_parallel(A.x(ea[1]) - A.x(ea[0]), B.x(eb[1]) - B.x(eb[0]),
                                                                           ns.min_sin_angle);
         if (crossing_ok && (d2 < lim * lim || touches(d))) hit |= 1u << (6 + 3 * ka + kb);
@@ -221,12 +235,13 @@ template <class Mem>
 struct FinishBounds {
   Kokkos::View<const real*, Mem> w;
   Kokkos::View<const Fixed*, Mem> dmin, qmin;
-  Kokkos::View<real*, Mem> bound, want;
+  Kokkos::View<real*, Mem> bound, want, near;
   Kokkos::View<const Vec3*, Mem> x0, xq;
   Vec3 tq;
   real gamma;
   bool pins, refresh;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    near(i) = from_fixed(dmin(i));
     if (!(pins || w(i) > 0)) {
       bound(i) = from_fixed(kFar);
       if (!refresh) want(i) = 0;
@@ -315,6 +330,7 @@ struct BoundSettings {
   real detect_scale = 1.25;  // the contact reach, as the narrow phase's (times the two thicknesses)
   bool bound_pins = true;    // pinned points reach their targets within their bounds too (else they jump)
   bool animated_pins = false;  // the scene's pins follow an animation: the common translation is theirs
+  bool nearest_margins = false;  // margins grow no further than their corners' nearest features (TriangleMargins)
 };
 
 // The bounds' working memory and kernels. Usage per query: prepare() (the common translation and the
@@ -341,7 +357,9 @@ class DisplacementBounds {
         scratch_("weft::bounds_scratch", points), dmin_("weft::bounds_dmin", points),
         qmin_("weft::bounds_qmin", points), deficit_("weft::bounds_deficit", points), pending_("weft::bounds_pending", points),
         cut_("weft::bounds_cut", points), flag_("weft::bounds_flag", points), xq_("weft::bounds_xq", points),
-        sums_("weft::bounds_sums") {}
+        sum_("weft::bounds_sum"), near_("weft::bounds_near", points) {
+    Kokkos::deep_copy(near_, bounds_detail::from_fixed(bounds_detail::kFar));
+  }
 
   long movable() const { return movable_ > 0 ? movable_ : 0; }  // counted at the first prepare()
   const View<Vec3*>& x0() const { return x0_; }
@@ -378,29 +396,28 @@ class DisplacementBounds {
     }
     // The cloth's reference motion: with animated pins, theirs (what it hangs from: with the free points'
     // mean the jammed twist drifted off, pins and all, to 20 m/s); on still pins or none, its free
-    // points' (a sheet on still pins, struck by a fast collider, moves on with it). Its three sums are
-    // read back together.
+    // points' (a sheet on still pins, struck by a fast collider, moves on with it). Its sum is one
+    // reduction of vectors, read back once.
     const long pinned = n - movable_;
     const bool by_pins = s_.bound_pins && s_.animated_pins && pinned > 0;
     const long averaged = by_pins ? pinned : movable_;
     t_ = Vec3{0, 0, 0};
     if (movable_ > 0) {
-      for (int k = 0; k < 3; ++k) {
-        Kokkos::parallel_for("weft::bounds_wanted", Kokkos::RangePolicy<Exec>(exec, 0, n),
-                             WantedComponent<Mem>{x, x0_, deficit_, pending_, w, scratch_, k, resume_, by_pins});
-        reduce_fixed_into(exec, scratch_, Kokkos::subview(sums_, k), SumOp{});
-      }
-      real sum[3];
-      Kokkos::deep_copy(exec, Kokkos::View<real[3], Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>(sum), sums_);
+      Kokkos::parallel_for("weft::bounds_wanted", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                           WantedMove<Mem>{x, x0_, deficit_, pending_, w, scratch_, resume_, by_pins});
+      reduce_fixed_into(exec, scratch_, sum_, SumOp{});
+      Vec3 sum;
+      Kokkos::deep_copy(exec, sum, sum_);
       exec.fence();
-      t_ = Vec3{sum[0], sum[1], sum[2]} / real(averaged);
+      t_ = sum / real(averaged);
     }
     Kokkos::parallel_for("weft::bounds_prepare", Kokkos::RangePolicy<Exec>(exec, 0, n),
                          PreparePoints<Mem>{x, x0_, deficit_, pending_, w, want_, xrel_, xb_, dmin_, qmin_, t_,
                                             resume_, s_.bound_pins, refresh_});
     if (refresh_) return;
     Kokkos::parallel_for("weft::bounds_margins", Kokkos::RangePolicy<Exec>(exec, 0, tris.extent(0)),
-                         TriangleMargins<Mem>{tris, floor_, ceiling_, want_, margin_, qmin_, s_.gamma});
+                         TriangleMargins<Mem>{tris, floor_, ceiling_, want_, near_, margin_, qmin_, s_.gamma,
+                                               s_.nearest_margins});
     Kokkos::deep_copy(exec, xq_, x0_);
     tq_ = Vec3{0, 0, 0};
     queried_ = true;
@@ -420,7 +437,7 @@ class DisplacementBounds {
 
   void finish(const Exec& exec, const View<real*>& w) {
     Kokkos::parallel_for("weft::bounds_finish", Kokkos::RangePolicy<Exec>(exec, 0, bound_.extent(0)),
-                         bounds_detail::FinishBounds<Mem>{w, dmin_, qmin_, bound_, want_, x0_, xq_, tq_, s_.gamma,
+                         bounds_detail::FinishBounds<Mem>{w, dmin_, qmin_, bound_, want_, near_, x0_, xq_, tq_, s_.gamma,
                                                           s_.bound_pins, refresh_});
     tq_ = tq_ + t_;
   }
@@ -450,13 +467,15 @@ class DisplacementBounds {
   long movable_ = -1;
   View<real*> floor_, ceiling_;
   View<Vec3*> x0_, xrel_, xb_;
-  View<real*> bound_, want_, margin_, scratch_;
+  View<real*> bound_, want_, margin_;
+  View<Vec3*> scratch_;  // per point, its wanted move (summed for the translation)
   View<bounds_detail::Fixed*> dmin_, qmin_;
   View<Vec3*> deficit_;  // per point, the prediction's motion still to hand on (pinned: its target)
   View<int*> pending_;   // pinned points short of their target
   View<int*> cut_, flag_;  // flag_: per point, for counts
   View<Vec3*> xq_;        // X0 of the last full query
-  View<real[3]> sums_;    // the wanted moves' sums, for the common translation
+  View<Vec3> sum_;        // the wanted moves' sum, for the common translation
+  View<real*> near_;      // per point, its nearest feature at the last query (far before the first)
   Vec3 t_{0, 0, 0}, tq_{0, 0, 0};  // this query's translation; the sum of those since the last full query
   bool resume_ = false, refresh_ = false, queried_ = false;
 };

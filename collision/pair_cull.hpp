@@ -19,13 +19,15 @@ namespace pair_cull_detail {
 
 // The interval of dot(n, p - o) over the start and end positions of triangle t's corners; `sum` gathers
 // the values so that one finiteness test covers them all.
+// A side that stands still (xs is x, as the proximity queries' cloth at X0) has three corners to project.
 template <class Mem>
 KOKKOS_INLINE_FUNCTION void swept_interval(const SideMesh<Mem>& S, const int (&t)[3], Vec3 n, Vec3 o, real& lo, real& hi,
                                            real& sum) {
   lo = dot(n, S.x(t[0]) - o);
   hi = lo;
   sum += lo;
-  for (int k = 1; k < 6; ++k) {
+  const int corners = S.xs.data() == S.x.data() ? 3 : 6;
+  for (int k = 1; k < corners; ++k) {
     const real d = dot(n, (k < 3 ? S.x(t[k]) : S.xs(t[k - 3])) - o);
     lo = min_(lo, d);
     hi = max_(hi, d);

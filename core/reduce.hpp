@@ -5,15 +5,18 @@
 #include "core/real.hpp"
 
 #include <Kokkos_Core.hpp>
+#include <type_traits>
 #include <vector>
 
 namespace weft {
 
 inline constexpr int kReduceBlock = 256;
 
+// Sums of reals, or of vectors component by component (each component then rounds as its own sum would).
 struct SumOp {
   KOKKOS_INLINE_FUNCTION static real identity() { return 0; }
-  KOKKOS_INLINE_FUNCTION real operator()(real a, real b) const { return a + b; }
+  template <class T>
+  KOKKOS_INLINE_FUNCTION T operator()(const T& a, const T& b) const { return a + b; }
 };
 struct MinOp {
   KOKKOS_INLINE_FUNCTION static real identity() { return __builtin_huge_val(); }
@@ -29,7 +32,11 @@ struct MaxOp {
 template <class Out, class Op>
 struct ReduceIdentity {
   Out out;
-  KOKKOS_INLINE_FUNCTION void operator()(int) const { out() = Op::identity(); }
+  KOKKOS_INLINE_FUNCTION void operator()(int) const {
+    using T = typename Out::non_const_value_type;
+    if constexpr (std::is_same_v<T, real>) out() = Op::identity();
+    else out() = T{};  // a vector sum
+  }
 };
 
 template <class In, class Partial, class Op>
@@ -40,7 +47,7 @@ struct ReduceBlocks {
   Op op;
   KOKKOS_INLINE_FUNCTION void operator()(long b) const {
     const long lo = b * kReduceBlock, hi = lo + kReduceBlock < len ? lo + kReduceBlock : len;
-    real acc = in(lo);
+    typename Partial::non_const_value_type acc = in(lo);
     for (long i = lo + 1; i < hi; ++i) acc = op(acc, in(i));
     partial(b) = acc;
   }
@@ -88,7 +95,7 @@ inline long levels_size(long n) {
 // reduce_fixed_into with the partial results in ws.
 template <class Exec, class Op, class XView, class OutView, class Partial>
 void reduce_levels(const Exec& exec, const XView& x, const OutView& out, Op op, const Partial& ws) {
-  using In = Kokkos::View<const real*, typename Exec::memory_space>;
+  using In = Kokkos::View<const typename Partial::non_const_value_type*, typename Exec::memory_space>;
   const long n = static_cast<long>(x.extent(0));
   if (n == 0) {
     Kokkos::parallel_for("weft::reduce_empty", Kokkos::RangePolicy<Exec>(exec, 0, 1), ReduceIdentity<OutView, Op>{out});
@@ -114,11 +121,12 @@ void reduce_levels(const Exec& exec, const XView& x, const OutView& out, Op op, 
 
 }  // namespace reduce_detail
 
-// Reduce x[0..n) into out() on the device; no host copy.
+// Reduce x[0..n) into out() on the device; no host copy. The values are reals, or vectors with SumOp.
 template <class Exec, class Op, class XView, class OutView>
 void reduce_fixed_into(const Exec& exec, const XView& x, const OutView& out, Op op = Op{}) {
+  using T = typename XView::non_const_value_type;
   const long size = reduce_detail::levels_size(static_cast<long>(x.extent(0)));
-  reduce_detail::reduce_levels(exec, x, out, op, reduce_detail::workspace<real, typename Exec::memory_space>(size));
+  reduce_detail::reduce_levels(exec, x, out, op, reduce_detail::workspace<T, typename Exec::memory_space>(size));
 }
 
 // Reduce to a host value (one small copy).

@@ -66,6 +66,7 @@ const Setting<bool> kBoolSettings[] = {
     collision("impact_zone_smoothing", &CollisionSettings::impact_zone_smoothing),
     collision("collision_failsafe", &CollisionSettings::collision_failsafe),
     collision("pair_refresh", &CollisionSettings::pair_refresh),
+    collision("nearest_margins", &CollisionSettings::nearest_margins),
     own("profile", &SolverSettings::profile),
 };
 const Setting<Vec3> kVecSettings[] = {
@@ -399,7 +400,7 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
   for (const auto& m : kBoolSettings) {
     const char* name = m.name;
     // Added after the first files of this format version were written: absent means the default.
-    const bool optional = std::strcmp(name, "collision_failsafe") == 0;
+    const bool optional = std::strcmp(name, "collision_failsafe") == 0 || std::strcmp(name, "nearest_margins") == 0;
     // Absent in files written before it existed, whose passes all queried afresh.
     if (std::strcmp(name, "pair_refresh") == 0 && !h5::has_attribute(f, group, name)) {
       field(s, m) = false;

@@ -218,24 +218,30 @@ class Solver {
       while (next_pass < P && (long(next_pass) * I) / P == it) collision_pass();
       timed("weft::constraints", schedule_.seconds_constraints, [&] {
         const real omega = chebyshev_omega(it);
-        if (chebyshev_on() && it + 1 >= st_.chebyshev_delay) {
+        const bool saving = chebyshev_on() && it + 1 >= st_.chebyshev_delay;
+        if (saving) {
           Kokkos::parallel_for("weft::chebyshev_save", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
                                kernels::ChebyshevSave<Mem, Vec3>{state_.x, cheb_xk_, cheb_xkm1_});
-          Kokkos::parallel_for("weft::chebyshev_save_lambda", Kokkos::RangePolicy<Exec>(exec_, 0, lambda_.extent(0)),
-                               kernels::ChebyshevSave<Mem, real>{lambda_, cheb_lk_, cheb_lkm1_});
+          // After a blend, the blend saved the multipliers already.
+          if (!(it > 0 && chebyshev_omega(it - 1) != 1))
+            Kokkos::parallel_for("weft::chebyshev_save_lambda", Kokkos::RangePolicy<Exec>(exec_, 0, lambda_.extent(0)),
+                                 kernels::ChebyshevSave<Mem, real>{lambda_, cheb_lk_, cheb_lkm1_});
         }
         gauss_seidel_sweep(h);
+        // Tethers are limits, not targets: the blend must not leave a point past its tether.
+        const bool tethers = tethers_.extent(0) > 0;
+        const bool keep = saving && cheb_xc_.extent(0) > 0;  // the points as this iteration leaves them
         if (omega != 1) {
           Kokkos::parallel_for("weft::chebyshev_blend", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
-                               kernels::ChebyshevBlend<Mem>{state_.x, cheb_xk_, cheb_xkm1_, cheb_xc_, state_.w, omega});
+                               kernels::ChebyshevBlend<Mem>{state_.x, cheb_xk_, cheb_xkm1_, cheb_xc_, state_.w, omega,
+                                                            keep && !tethers});
           Kokkos::parallel_for("weft::chebyshev_blend_lambda", Kokkos::RangePolicy<Exec>(exec_, 0, lambda_.extent(0)),
-                               kernels::ChebyshevBlendLambda<Mem>{lambda_, cheb_lkm1_, omega});
-          // Tethers are limits, not targets: the blend must not leave a point past its tether.
-          if (tethers_.extent(0) > 0)
+                               kernels::ChebyshevBlendLambda<Mem>{lambda_, cheb_lk_, cheb_lkm1_, omega});
+          if (tethers)
             Kokkos::parallel_for("weft::project_tethers", Kokkos::RangePolicy<Exec>(exec_, 0, tethers_.extent(0)),
                                  kernels::ProjectTethers<Mem>{tethers_, state_.x});
         }
-        if (cheb_xc_.extent(0) > 0 && it + 1 >= st_.chebyshev_delay) Kokkos::deep_copy(exec_, cheb_xc_, state_.x);
+        if (keep && !(omega != 1 && !tethers)) Kokkos::deep_copy(exec_, cheb_xc_, state_.x);
       });
       if (!collision_) continue;
       timed("weft::contacts", schedule_.seconds_contacts, [&] { collision_->project(state_, h); });

@@ -133,26 +133,36 @@ struct ChebyshevSave {
 // Points with w > 0 only (the others follow their animation). With a collision stage, a point its contacts
 // or its bound moved after the last sweep (it starts this iteration elsewhere than that sweep left it, xc)
 // keeps the sweep's result: extrapolating a contact's push would carry the point into what it touches.
+// With `keep`, every point's result is also kept as the next iteration's xc (where no tether moves the
+// points after the blend), which spares a copy.
 template <class Mem>
 struct ChebyshevBlend {
   Kokkos::View<Vec3*, Mem> x, xk, xkm1, xc;  // xc: empty without a collision stage
   Kokkos::View<real*, Mem> w;
   real omega;
+  bool keep;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
-    if (!(w(i) > 0)) return;
-    if (xc.extent(0) > 0 && !(xk(i).x == xc(i).x && xk(i).y == xc(i).y && xk(i).z == xc(i).z)) return;
-    x(i) = xkm1(i) + omega * (x(i) - xkm1(i));
+    const bool blend = w(i) > 0 && !(xc.extent(0) > 0 && !(xk(i).x == xc(i).x && xk(i).y == xc(i).y && xk(i).z == xc(i).z));
+    if (blend) x(i) = xkm1(i) + omega * (x(i) - xkm1(i));
+    if (keep) xc(i) = x(i);
   }
 };
 
 // The rows' multipliers by the same weight as the points: XPBD keeps x - x_predicted = M^-1 grad C^T lambda
 // over a substep's iterations, and a blend of the points alone would break it, so that compliant rows
 // settle at the wrong stretch.
+// The next iteration's save (ChebyshevSave) is done here too: nothing else changes the multipliers between
+// a sweep's blend and the next sweep.
 template <class Mem>
 struct ChebyshevBlendLambda {
-  Kokkos::View<real*, Mem> lambda, lkm1;
+  Kokkos::View<real*, Mem> lambda, lk, lkm1;
   real omega;
-  KOKKOS_INLINE_FUNCTION void operator()(long r) const { lambda(r) = lkm1(r) + omega * (lambda(r) - lkm1(r)); }
+  KOKKOS_INLINE_FUNCTION void operator()(long r) const {
+    const real blended = lkm1(r) + omega * (lambda(r) - lkm1(r));
+    lambda(r) = blended;
+    lkm1(r) = lk(r);
+    lk(r) = blended;
+  }
 };
 
 // Every tether at once: each moves only its own point, towards a point that does not move.

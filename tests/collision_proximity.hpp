@@ -39,14 +39,22 @@ struct TwoTriangles {
     cloth.rmask = weft::test::to_device<Exec, uint8_t>({0x3F, 0x3F}, "rmask");
     cloth.thickness = weft::test::to_device<Exec, real>(std::vector<real>(6, th), "th");
   }
-  // A query from where the points stand (a full one, or a refresh); the bounds on the host.
-  auto query(bool refresh = false) {
+  // A query from where the points stand (a full one, or a refresh); the bounds on the host. With
+  // `contacts`, the pair's contact bits are taken too, as the collision stage takes a self pair's.
+  auto query(bool refresh = false, bool contacts = false) {
     b.prepare(Exec(), x, x, w, tris, /*first*/ true, refresh);
     cloth.x = cloth.xs = cloth.xo = b.x0();
-    b.add_pairs(Exec(), cloth, cloth, pairs, 1, b.relative_end(), w);
+    if (contacts) {
+      weft::NarrowSettings ns;
+      ns.self = true;
+      b.add_pairs(Exec(), cloth, cloth, pairs, 1, b.relative_end(), w, hits, ns);
+    } else {
+      b.add_pairs(Exec(), cloth, cloth, pairs, 1, b.relative_end(), w);
+    }
     b.finish(Exec(), w);
     return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.bounds());
   }
+  Kokkos::View<uint32_t*, Mem> hits{"hits", 1};
   void move_to(const std::vector<Vec3>& p) { Kokkos::deep_copy(x, weft::test::to_device<Exec, Vec3>(p, "moved")); }
 };
 
@@ -105,6 +113,30 @@ TEST(WEFT_TEST_SUITE, proximity_refresh_spends_what_points_moved_since_the_full_
   for (int i = 0; i < 6; ++i) EXPECT_NEAR(again(i), gamma * (gap - up), 1e-9) << "point " << i;
 }
 
+// A refresh skips a kept pair only while its distance at the full query, less what its corners moved
+// since, stays beyond its reach. Two triangles 3 cm apart with margins of 1.1 cm are out of reach at the
+// full query; the lower one then moves up by 0.5 cm (the pair stays out of reach: nothing bounds the
+// points but their margins' budget) and by 1.5 cm more (now 1 cm apart: the refresh must measure the
+// pair again, and the upper points are bounded by gamma times the new gap).
+TEST(WEFT_TEST_SUITE, proximity_refresh_measures_again_the_pairs_that_came_within_reach) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  const real q = 0.011;
+  TwoTriangles s(0.03, q);
+  const real gamma = s.bs.gamma;
+  const auto full = s.query(false, true);
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(full(i), gamma * q, 1e-12) << "point " << i;
+  for (const real up : {0.005, 0.02}) {
+    std::vector<Vec3> moved = s.x0h;
+    for (int i = 0; i < 3; ++i) moved[i].y += up;
+    s.move_to(moved);
+    const auto kept = s.query(true, true);
+    for (int i = 3; i < 6; ++i) {
+      const real expected = up < 0.01 ? gamma * q : gamma * (s.gap - up);
+      EXPECT_NEAR(kept(i), expected, 1e-9) << "point " << i << " after " << up << " m";
+    }
+  }
+}
+
 // The twist winds the sheet into a rope: the contacts never converge in the schedule's iterations, yet
 // nothing crosses and nothing is moved back. Pins reach their targets within their bounds like every other
 // point, so they sit exactly on their animation until the rope jams next to them (from frame 25 at this
@@ -145,9 +177,8 @@ TEST(WEFT_TEST_SUITE, proximity_skirt_waistband_tracks_the_body_exactly) {
 }
 
 // A sheet dropped onto a sphere folds over it and onto itself.
-TEST(WEFT_TEST_SUITE, proximity_folding_sheet_stays_free_of_intersections) {
+void fold_sheet_without_intersections(weft::Scene s) {
   using Exec = WEFT_TEST_EXECSPACE;
-  weft::Scene s = weft::io::make_builtin_scene("drape-sphere", {14});
   weft::SimulationOn<Exec> sim(s);
   ASSERT_TRUE(s.settings.collision.pair_refresh);  // the default
   long contacts = 0, passes = 0, queries = 0;
@@ -161,6 +192,18 @@ TEST(WEFT_TEST_SUITE, proximity_folding_sheet_stays_free_of_intersections) {
   }
   EXPECT_GT(contacts, 0);
   EXPECT_LT(queries, passes);  // passes kept their pairs, and nothing crossed
+}
+
+TEST(WEFT_TEST_SUITE, proximity_folding_sheet_stays_free_of_intersections) {
+  fold_sheet_without_intersections(weft::io::make_builtin_scene("drape-sphere", {14}));
+}
+
+// Query margins that grow no further than the nearest features (nearest_margins) give smaller bounds where
+// the cloth is far from everything, never a crossing.
+TEST(WEFT_TEST_SUITE, proximity_nearest_margins_fold_the_sheet_without_intersections) {
+  weft::Scene s = weft::io::make_builtin_scene("drape-sphere", {14});
+  s.settings.collision.nearest_margins = true;
+  fold_sheet_without_intersections(s);
 }
 
 }  // namespace

@@ -270,6 +270,10 @@ TEST(WEFT_TEST_SUITE, collision_scene_hash_is_pinned) {
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "8cd507af6001be3b");
   s.settings.collision.pair_refresh = true;
+  s.settings.collision.nearest_margins = true;  // margins no wider than the nearest features
+  weft::test::run_frames<Exec>(s, 12, &h);
+  EXPECT_EQ(weft::hash_hex(h), "bdf7989cd653f5c3");
+  s.settings.collision.nearest_margins = false;
   s.settings.collision.contact_model = weft::ContactModel::Ccd;
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "303d4c051ec83421");  // either CCD span; no Chebyshev with the ccd model
