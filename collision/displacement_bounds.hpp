@@ -87,7 +87,7 @@ struct PreparePoints {
 // features or the next layer, about that far, so a wider query would only add pairs); each corner keeps
 // the smallest margin of its triangles. With `nearest`, nor does the margin grow past the farthest of its
 // corners' nearest features at the last query: a bound held by a nearer feature gains nothing from a wider
-// query, which only adds pairs (docs/collisions.md, "Query margins").
+// query, which only adds pairs (docs/collisions.md, "Margins"; docs/performance.md, "Query margins").
 template <class Mem>
 struct TriangleMargins {
   Kokkos::View<const int* [3], Mem> tris;
