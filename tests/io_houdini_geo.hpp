@@ -1,6 +1,7 @@
 // Houdini .geo / .bgeo: Houdini-written files, round trips, malformed input and atomic writing.
 #include "io/houdini_bjson.hpp"
 #include "io/houdini_geo.hpp"
+#include "tests/input_error_fixture.hpp"
 #include "tests/io_checks_fixture.hpp"
 #include "tests/scratch_dir_fixture.hpp"
 
@@ -32,13 +33,7 @@ std::string read_bytes(const std::string& path) {
 
 // The FormatError message `f` throws; a test failure when it throws none.
 std::string format_error(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const FormatError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no FormatError thrown";
-  return "";
+  return weft::test::thrown_message<FormatError>(f, "FormatError");
 }
 
 void expect_same(const Geometry& a, const Geometry& b) {
