@@ -45,7 +45,8 @@ void print_settings(const SolverSettings& s, bool fem_rows = false) {
   if (c.contact_model == ContactModel::Proximity)
     std::cout << " (early passes at " << c.early_pass_fraction << " of the points cut back, at most "
               << c.max_early_passes << " a substep; pair refresh " << (c.pair_refresh ? "on" : "off")
-              << "; nearest margins " << (c.nearest_margins ? "on" : "off") << ")";
+              << "; nearest margins " << (c.nearest_margins ? "on" : "off") << "; predicted reference "
+              << (c.predicted_reference ? "on" : "off") << ")";
   std::cout << "\n"
             << "  impact zone smoothing " << (c.impact_zone_smoothing ? "on" : "off") << " (epsilon "
             << c.impact_zone_epsilon << ", " << c.impact_zone_sweeps << " sweeps), crossing fail-safe "

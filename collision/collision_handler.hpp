@@ -76,6 +76,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     if (proximity_) {
       bound_settings_.animated_pins = !s.kinematic_point.empty() && s.pin_targets.frames.size() > 1;
       bound_settings_.nearest_margins = settings_.nearest_margins;
+      bound_settings_.predicted_reference = settings_.predicted_reference;
       // A triangle's smallest query margin: an unfound pair keeps more than (1 - gamma)(m_A + m_B), at
       // least the contact reach of its points.
       std::vector<real> floor(s.triangles.size()), ceiling(s.triangles.size());
@@ -119,7 +120,11 @@ class CollisionHandler final : public CollisionStage<Exec> {
     pass_in_substep_ = 0;
     early_in_substep_ = 0;
     if (substep != 0) return;
-    if (proximity_) { build_ = true; return; }  // the first query builds the trees from its own boxes
+    if (proximity_) {  // the first query builds the trees from its own boxes
+      build_ = true;
+      if (bounds_) bounds_->retry_references();
+      return;
+    }
     timed("weft::lbvh_build", stats_.seconds_lbvh_build, [&] {
       update_boxes(s.exec, cloth_side(s), collider_side(s), cloth_margin_);
       cloth_bvh_.build(cloth_boxes_);
@@ -238,7 +243,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
       // An early pass runs because points were cut back: it queries afresh, which resets what they spent
       // and widens the margins where they want to move. Letting it keep the pairs, as a scheduled pass
       // may, saved nothing on the skirt: by then most points had spent half of what the pairs allow.
+      // A substep's first query with reference moves sweeps the boxes for the prediction: it never keeps pairs.
       refresh = settings_.pair_refresh && settings_.self_collision && !build_ && !early_next_ &&
+                !(b.references() && first) &&
                 !(real(b.spent(s.exec, from, s.w)) > settings_.early_pass_fraction * real(b.movable()));
       early_next_ = false;
       b.prepare(s.exec, from, s.x, s.w, cloth_tris_, first, refresh);
@@ -247,14 +254,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
       if (!refresh)
         swept_triangle_boxes(s.exec, View<const Vec3*>(b.x0()), View<const Vec3*>(b.relative_end()),
                              View<const int* [3]>(cloth_tris_), margins, cloth_boxes_);
-      if (colliders) {
-        if (swept_boxes_.extent(0) != cloth_boxes_.extent(0))
-          swept_boxes_ = View<Aabb*>("weft::cloth_swept_boxes", cloth_boxes_.extent(0));
-        swept_triangle_boxes(s.exec, View<const Vec3*>(b.x0()), View<const Vec3*>(b.end()),
-                             View<const int* [3]>(cloth_tris_), margins, swept_boxes_);
+      if (colliders)
         swept_triangle_boxes(s.exec, collider.xs, collider.x, View<const int* [3]>(collider_tris_),
                              View<const real*>(collider_margin_), collider_boxes_);
-      }
       if (build_) {
         cloth_bvh_.build(cloth_boxes_);
         if (colliders) collider_bvh_.build(collider_boxes_);
@@ -273,7 +275,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
         // The cloth stands still at X0: the bounds' distances decide its contacts too.
         const long np = nself_pairs_;
         lbvh_detail::reserve(self_hits_, np, "weft::self_hits");
-        b.add_pairs(s.exec, cloth, cloth, pairs_, np, b.relative_end(), s.w, self_hits_, ns);
+        if (b.sweeps()) b.add_self_pairs_with_references(s.exec, cloth, pairs_, np, s.w, self_hits_, ns);
+        else b.add_pairs(s.exec, cloth, cloth, pairs_, np, b.relative_end(), s.w, self_hits_, ns);
         if (np > 0) n += narrow_.fill(s.exec, cloth, cloth, ns, pairs_, np, self_hits_, contacts_, n);
       });
     }
@@ -284,6 +287,11 @@ class CollisionHandler final : public CollisionStage<Exec> {
       moving.x = b.end();
       long npairs = 0;
       timed("weft::broad_phase", stats_.seconds_broad_phase, [&] {
+        // Swept to where the cloth goes, which reference moves settle only with the self pairs.
+        if (swept_boxes_.extent(0) != cloth_boxes_.extent(0))
+          swept_boxes_ = View<Aabb*>("weft::cloth_swept_boxes", cloth_boxes_.extent(0));
+        swept_triangle_boxes(s.exec, View<const Vec3*>(b.x0()), View<const Vec3*>(b.end()),
+                             View<const int* [3]>(cloth_tris_), b.margins(), swept_boxes_);
         npairs = collider_bvh_.query(View<const Aabb*>(swept_boxes_), KeepAllPairs{}, collider_pairs_);
       });
       timed("weft::collider_narrow_phase", stats_.seconds_narrow_phase, [&] {

@@ -60,25 +60,102 @@ struct WantedMove {
 // Per point: the largest move wanted since the last query beside the common translation t, and two
 // position sets for the boxes: `xrel`, where the point goes seen from the translating frame (X0; a pinned
 // point's target less t), and `xb`, where it goes (X0 + t; a pinned point's target).
+// With `reference` (predicted_reference), a bounded point's reference move r is its whole wanted move
+// beside t where the query `sweep`s references (0 at a refresh, whose kept pairs were not swept for new
+// moves, and once references are off for the frame), and xrel, xb follow it (X0 + r, X0 + t + r).
 template <class Mem>
 struct PreparePoints {
   Kokkos::View<const Vec3*, Mem> x, x0, deficit;
   Kokkos::View<const int*, Mem> pending;
   Kokkos::View<const real*, Mem> w;
   Kokkos::View<real*, Mem> want;
-  Kokkos::View<Vec3*, Mem> xrel, xb;
+  Kokkos::View<Vec3*, Mem> xrel, xb, ref;
+  Kokkos::View<int*, Mem> anchor;
   Kokkos::View<Fixed*, Mem> dmin, qmin;
   Vec3 t;
-  bool resume, pins, refresh;
+  bool resume, pins, refresh, reference, sweep;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const bool free = pins || w(i) > 0;
     const Vec3 target = wanted_position(x, deficit, pending, w, i, resume);
+    dmin(i) = kFar;
+    if (!refresh) qmin(i) = kFar;  // a refresh keeps the last full query's margins
+    if (reference) {
+      const Vec3 r = free && sweep ? target - x0(i) - t : Vec3{0, 0, 0};
+      ref(i) = r;
+      anchor(i) = 0;
+      // Margins grow with the whole wanted move, as without references: a point's bound beside its
+      // reference is gamma Q, and a free sheet held to the floor's Q stretched twice as far (the 100K
+      // hanging sheet's p99 strain 0.13 -> 0.29).
+      if (free) want(i) = max_(want(i), norm(target - x0(i) - t));
+      xrel(i) = free ? x0(i) + r : x(i) - t;
+      xb(i) = free ? x0(i) + t + r : x(i);
+      return;
+    }
     if (free) want(i) = max_(want(i), norm(target - x0(i) - t));
     xrel(i) = free ? x0(i) : x(i) - t;
     xb(i) = free ? x0(i) + t : x(i);
-    dmin(i) = kFar;
-    if (!refresh) qmin(i) = kFar;  // a refresh keeps the last full query's margins
   }
+};
+
+// Per point, after a round of the pairs with reference moves: a bounded point newly anchored (2) by a pair
+// whose corners want moves too far apart for its distance goes back to the common translation (r = 0).
+// Every point's nearest distance starts again for the next round. `all`: every bounded point is anchored
+// (the last round, the bounds without references).
+template <class Mem>
+struct AnchorPoints {
+  Kokkos::View<const Vec3*, Mem> x0;
+  Kokkos::View<const real*, Mem> w;
+  Kokkos::View<Vec3*, Mem> xrel, xb, ref;
+  Kokkos::View<int*, Mem> anchor;
+  Kokkos::View<Fixed*, Mem> dmin;
+  Vec3 t;
+  bool all, pins;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    dmin(i) = kFar;
+    if (!(pins || w(i) > 0) || !(anchor(i) == 2 || (all && anchor(i) == 0))) return;
+    anchor(i) = 1;
+    ref(i) = Vec3{0, 0, 0};
+    xrel(i) = x0(i);
+    xb(i) = x0(i) + t;
+  }
+};
+
+// Per point (full queries with references): the reference move held to the smallest query margin Q of the
+// point's triangles, so that the swept boxes grow by at most about their margins (a frame's prediction at
+// one substep swept boxes so wide that a 300K skirt's pass took 60 ms, not 8). What is held back is left
+// to the bound beside the reference, as without references.
+template <class Mem>
+struct HoldReference {
+  Kokkos::View<const Vec3*, Mem> x0;
+  Kokkos::View<const Fixed*, Mem> qmin;
+  Kokkos::View<const real*, Mem> w;
+  Kokkos::View<Vec3*, Mem> ref, xrel, xb;
+  Vec3 t;
+  bool pins;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    if (!(pins || w(i) > 0)) return;
+    const real l2 = norm2(ref(i)), q = from_fixed(qmin(i));
+    if (!(l2 > q * q)) return;
+    const Vec3 r = (q / sqrt_(l2)) * ref(i);
+    ref(i) = r;
+    xrel(i) = x0(i) + r;
+    xb(i) = x0(i) + t + r;
+  }
+};
+
+// Per point: where a refresh measures its move from, the end of its reference move at the full query.
+template <class Mem>
+struct ReferenceEnd {
+  Kokkos::View<const Vec3*, Mem> x0, ref;
+  Kokkos::View<Vec3*, Mem> xq;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const { xq(i) = x0(i) + ref(i); }
+};
+
+template <class Mem>
+struct MarkAnchored {
+  Kokkos::View<const int*, Mem> anchor;
+  Kokkos::View<int*, Mem> flag;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const { flag(i) = anchor(i) == 2 ? 1 : 0; }
 };
 
 // Per triangle: its query margin, from what its corners want to move (a point may move gamma times its
@@ -119,7 +196,14 @@ struct TriangleMargins {
 // contacts, as the narrow phase's bits (collision/narrow_phase.hpp): vf_test and ee_test on a pair that
 // does not move, whose CCD could only report a pair already touching. One pass over the pairs then gives
 // the bounds and the contacts, where the narrow phase measured every feature pair again (twice).
-template <class Mem>
+//
+// With Ref (predicted_reference; self pairs), each point moves by its reference move r on top of t,
+// xend = X0 + r: a feature pair's distance is taken as d - D, D the largest difference of its corners'
+// reference moves (a point of a feature moves by a convex combination of its corners' moves, so the pair
+// closes by at most D over the reference motion), and a pair with D > (1 - kCoherence) d anchors its
+// corners (anchor 2; the caller then runs the pairs again with them on t alone). The swept hulls and the
+// reach test follow the reference motion.
+template <class Mem, bool Ref = false>
 struct PairDistances {
   // Self pairs: A and B the cloth at X0, and `xend` where its points go seen from the translating frame
   // (pinned points move, the others not). Collider pairs: A the cloth where it goes (X0 + t, pinned points
@@ -134,6 +218,13 @@ struct PairDistances {
   bool pins;                           // pinned points are bounded too
   Kokkos::View<uint32_t*, Mem> hits;  // empty, or per pair its contact bits
   NarrowSettings ns;
+  SideMesh<Mem> As, Bs;               // Ref: the sides swept from X0 (xs) to xend (x)
+  Kokkos::View<int*, Mem> anchor;     // Ref: per point, 2 once a pair anchors it
+
+  static constexpr real kCoherence = 0.5;  // a pair keeps its corners' references while D <= (1 - this) d
+  KOKKOS_INLINE_FUNCTION Vec3 ref_move(const SideMesh<Mem>& S, int v) const {
+    return S.collider ? Vec3{0, 0, 0} : xend(v) - S.x(v);
+  }
 
   KOKKOS_INLINE_FUNCTION real pinned_move(const SideMesh<Mem>& S, int v) const {
     return S.collider || pins || w(v) > 0 ? real(0) : norm(xend(v) - S.x(v));
@@ -146,6 +237,23 @@ struct PairDistances {
   template <int NA, int NB>
   KOKKOS_INLINE_FUNCTION void record(const SideMesh<Mem>& SA, const int (&pa)[NA], const SideMesh<Mem>& SB,
                                      const int (&pb)[NB], real d, real reach, real contact) const {
+    if constexpr (Ref) {
+      real D2 = 0;
+      for (int i = 0; i < NA; ++i)
+        for (int j = 0; j < NB; ++j) D2 = max_(D2, norm2(ref_move(SA, pa[i]) - ref_move(SB, pb[j])));
+      const real D = sqrt_(D2);
+      if (!(d - D < reach)) return;
+      if (D > (1 - kCoherence) * d) {  // only bounded points have references to give up
+        for (int k = 0; k < NA; ++k)
+          if (!SA.collider && (pins || w(pa[k]) > 0) && anchor(pa[k]) == 0) anchor(pa[k]) = 2;
+        for (int k = 0; k < NB; ++k)
+          if (!SB.collider && (pins || w(pb[k]) > 0) && anchor(pb[k]) == 0) anchor(pb[k]) = 2;
+      }
+      const Fixed f = to_fixed(d - D);
+      for (int k = 0; k < NA; ++k) fold(SA, pa[k], f);
+      for (int k = 0; k < NB; ++k) fold(SB, pb[k], f);
+      return;
+    }
     if (!(d < reach)) return;
     if ((SA.collider || SB.collider) && d < contact) return;
     real ma = 0, mb = 0;
@@ -175,7 +283,7 @@ struct PairDistances {
     if (!P.collider && !F.collider && (p == f[0] || p == f[1] || p == f[2])) return false;
     const real r = P.th(p) + narrow_detail::face_th(F, TF);
     const real lim = ns.detect_scale * r;
-    if (kBoxes && beyond(Aabb{P.x(p), P.x(p)}, expand(expand(Aabb{F.x(f[0]), F.x(f[0])}, F.x(f[1])), F.x(f[2])), reach, lim))
+    if (kBoxes && !Ref && beyond(Aabb{P.x(p), P.x(p)}, expand(expand(Aabb{F.x(f[0]), F.x(f[0])}, F.x(f[1])), F.x(f[2])), reach, lim))
       return false;
     real u, v, s;
     const real d2 = point_triangle_distance2(P.x(p), F.x(f[0]), F.x(f[1]), F.x(f[2]), u, v, s);
@@ -191,7 +299,7 @@ struct PairDistances {
     const int ia[3] = {A.tris(ta, 0), A.tris(ta, 1), A.tris(ta, 2)}, ib[3] = {B.tris(tb, 0), B.tris(tb, 1), B.tris(tb, 2)};
     // Triangles apart by more than the reach along either normal have no feature pair within it (the reach
     // is wider than any contact's).
-    if (pair_cull_detail::swept_apart(A, ia, B, ib, reach)) {
+    if (Ref ? pair_cull_detail::swept_apart(As, ia, Bs, ib, reach) : pair_cull_detail::swept_apart(A, ia, B, ib, reach)) {
       if (contacts) hits(i) = 0;
       return;
     }
@@ -210,7 +318,7 @@ struct PairDistances {
         if (!B.collider && narrow_detail::shares(ea[0], ea[1], eb[0], eb[1])) continue;
         const real th = max_(A.th(ea[0]), A.th(ea[1])) + max_(B.th(eb[0]), B.th(eb[1]));
         const real lim = ns.ee_detect_scale * th;
-        if (kBoxes && beyond(expand(Aabb{A.x(ea[0]), A.x(ea[0])}, A.x(ea[1])),
+        if (kBoxes && !Ref && beyond(expand(Aabb{A.x(ea[0]), A.x(ea[0])}, A.x(ea[1])),
                              expand(Aabb{B.x(eb[0]), B.x(eb[0])}, B.x(eb[1])), reach, lim))
           continue;
         real s, t;
@@ -287,13 +395,16 @@ struct Truncate {
   Kokkos::View<Vec3*, Mem> deficit;  // a free point's move still to hand on; a pinned point's target
   Kokkos::View<int*, Mem> pending;   // a pinned point still short of its target
   Kokkos::View<int*, Mem> cut;       // per point: cut back by this truncation
+  Kokkos::View<const Vec3*, Mem> ref;  // with `reference`, the point's reference move beside t
   Vec3 t;
-  bool carry, resume;
+  bool carry, resume, reference;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const bool pinned = !(w(i) > 0);
     // A pinned point goes on to its target itself, so it lands on it exactly.
     const Vec3 xi = wanted_position(x, deficit, pending, w, i, resume);
-    const Vec3 base = x0(i) + t, d = xi - base;
+    Vec3 base = x0(i) + t;
+    if (reference) base += ref(i);
+    const Vec3 d = xi - base;
     const real l2 = norm2(d), b = bound(i);
     if (!(l2 > b * b)) {
       if (resume) x(i) = xi;
@@ -331,6 +442,8 @@ struct BoundSettings {
   bool bound_pins = true;    // pinned points reach their targets within their bounds too (else they jump)
   bool animated_pins = false;  // the scene's pins follow an animation: the common translation is theirs
   bool nearest_margins = false;  // margins grow no further than their corners' nearest features (TriangleMargins)
+  bool predicted_reference = false;  // each point bounded beside its own wanted move (PairDistances' Ref)
+  int max_anchor_rounds = 3;     // then every point is anchored to t, and references rest until the next frame
 };
 
 // The bounds' working memory and kernels. Usage per query: prepare() (the common translation and the
@@ -357,9 +470,19 @@ class DisplacementBounds {
         scratch_("weft::bounds_scratch", points), dmin_("weft::bounds_dmin", points),
         qmin_("weft::bounds_qmin", points), deficit_("weft::bounds_deficit", points), pending_("weft::bounds_pending", points),
         cut_("weft::bounds_cut", points), flag_("weft::bounds_flag", points), xq_("weft::bounds_xq", points),
-        sum_("weft::bounds_sum"), near_("weft::bounds_near", points) {
+        sum_("weft::bounds_sum"), near_("weft::bounds_near", points),
+        ref_("weft::bounds_ref", s.predicted_reference ? points : 0),
+        anchor_("weft::bounds_anchor", s.predicted_reference ? points : 0) {
     Kokkos::deep_copy(near_, bounds_detail::from_fixed(bounds_detail::kFar));
   }
+
+  // Whether a full query now sweeps reference moves: from each frame's start (retry_references()) until a
+  // query has had to anchor every point. Where the cloth's motion is not its prediction (a stack falling
+  // onto itself, a frame's motion in one substep) the rounds spread anchors over the whole cloth at every
+  // query, and each round costs as much as the pairs' distances without references.
+  bool references() const { return s_.predicted_reference && active_; }
+  void retry_references() { active_ = true; }
+  bool sweeps() const { return sweep_; }  // the last prepare()'s query sweeps reference moves
 
   long movable() const { return movable_ > 0 ? movable_ : 0; }  // counted at the first prepare()
   const View<Vec3*>& x0() const { return x0_; }
@@ -411,13 +534,18 @@ class DisplacementBounds {
       exec.fence();
       t_ = sum / real(averaged);
     }
+    sweep_ = references() && !refresh_;
     Kokkos::parallel_for("weft::bounds_prepare", Kokkos::RangePolicy<Exec>(exec, 0, n),
-                         PreparePoints<Mem>{x, x0_, deficit_, pending_, w, want_, xrel_, xb_, dmin_, qmin_, t_,
-                                            resume_, s_.bound_pins, refresh_});
+                         PreparePoints<Mem>{x, x0_, deficit_, pending_, w, want_, xrel_, xb_, ref_, anchor_, dmin_,
+                                            qmin_, t_, resume_, s_.bound_pins, refresh_, s_.predicted_reference,
+                                            sweep_});
     if (refresh_) return;
     Kokkos::parallel_for("weft::bounds_margins", Kokkos::RangePolicy<Exec>(exec, 0, tris.extent(0)),
                          TriangleMargins<Mem>{tris, floor_, ceiling_, want_, near_, margin_, qmin_, s_.gamma,
                                                s_.nearest_margins});
+    if (sweep_)
+      Kokkos::parallel_for("weft::bounds_hold_reference", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                           HoldReference<Mem>{x0_, qmin_, w, ref_, xrel_, xb_, t_, s_.bound_pins});
     Kokkos::deep_copy(exec, xq_, x0_);
     tq_ = Vec3{0, 0, 0};
     queried_ = true;
@@ -435,10 +563,56 @@ class DisplacementBounds {
                                                            s_.bound_pins, hits, ns});
   }
 
+  // Self pairs (A the cloth at X0) with reference moves: the pairs run in rounds until no pair anchors a
+  // point it had not (each round reads one count back); after max_anchor_rounds every point is anchored
+  // and a last round gives the bounds without references. The first round also writes `hits` (the
+  // contacts stand at X0 whatever the references). Returns the rounds run.
+  int add_self_pairs_with_references(const Exec& exec, const SideMesh<Mem>& cloth, const View<IndexPair*>& pairs,
+                                     long n, const View<real*>& w, const View<uint32_t*>& hits,
+                                     const NarrowSettings& ns) {
+    using namespace bounds_detail;
+    if (n == 0) return 0;
+    SideMesh<Mem> swept = cloth;
+    swept.x = xrel_;
+    const long points = long(x0_.extent(0));
+    for (int round = 0;; ++round) {
+      Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                           PairDistances<Mem, true>{cloth, cloth, pairs, xrel_, w, margin_, dmin_, s_.detect_scale,
+                                                    s_.bound_pins, round == 0 ? hits : View<uint32_t*>(), ns, swept,
+                                                    swept, anchor_});
+      Kokkos::parallel_for("weft::bounds_anchored", Kokkos::RangePolicy<Exec>(exec, 0, points),
+                           MarkAnchored<Mem>{anchor_, flag_});
+      const long anchored = sum_counts(exec, flag_);
+      stats_anchored_ += anchored;
+      if (anchored == 0) return round + 1;
+      const bool all = round + 1 >= s_.max_anchor_rounds;
+      if (all) active_ = false;
+      Kokkos::parallel_for("weft::bounds_anchor", Kokkos::RangePolicy<Exec>(exec, 0, points),
+                           AnchorPoints<Mem>{x0_, w, xrel_, xb_, ref_, anchor_, dmin_, t_, all, s_.bound_pins});
+      if (all) {
+        Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                             PairDistances<Mem, true>{cloth, cloth, pairs, xrel_, w, margin_, dmin_, s_.detect_scale,
+                                                      s_.bound_pins, View<uint32_t*>(), ns, swept, swept, anchor_});
+        return round + 2;
+      }
+    }
+  }
+
+  // Points anchored to the common translation by reference rounds since the last call.
+  long take_anchored() {
+    const long a = stats_anchored_;
+    stats_anchored_ = 0;
+    return a;
+  }
+
   void finish(const Exec& exec, const View<real*>& w) {
     Kokkos::parallel_for("weft::bounds_finish", Kokkos::RangePolicy<Exec>(exec, 0, bound_.extent(0)),
                          bounds_detail::FinishBounds<Mem>{w, dmin_, qmin_, bound_, want_, near_, x0_, xq_, tq_, s_.gamma,
                                                           s_.bound_pins, refresh_});
+    // With references a point that followed its own stands near X0 + r, not X0, at the next refresh.
+    if (sweep_)
+      Kokkos::parallel_for("weft::bounds_reference_end", Kokkos::RangePolicy<Exec>(exec, 0, x0_.extent(0)),
+                           bounds_detail::ReferenceEnd<Mem>{x0_, ref_, xq_});
     tq_ = tq_ + t_;
   }
 
@@ -459,8 +633,8 @@ class DisplacementBounds {
  private:
   void run_truncate(const Exec& exec, const View<Vec3*>& x, const View<real*>& w, bool carry, bool resume) {
     Kokkos::parallel_for("weft::bounds_truncate", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
-                         bounds_detail::Truncate<Mem>{x, x0_, w, bound_, want_, deficit_, pending_, cut_, t_, carry,
-                                                      resume});
+                         bounds_detail::Truncate<Mem>{x, x0_, w, bound_, want_, deficit_, pending_, cut_, ref_, t_,
+                                                      carry, resume, s_.predicted_reference});
   }
 
   BoundSettings s_;
@@ -476,8 +650,12 @@ class DisplacementBounds {
   View<Vec3*> xq_;        // X0 of the last full query
   View<Vec3> sum_;        // the wanted moves' sum, for the common translation
   View<real*> near_;      // per point, its nearest feature at the last query (far before the first)
+  View<Vec3*> ref_;       // predicted_reference: per point, its reference move beside t (0 once anchored)
+  View<int*> anchor_;     // predicted_reference: 0 on its reference, 2 anchored this round, 1 before
+  long stats_anchored_ = 0;
   Vec3 t_{0, 0, 0}, tq_{0, 0, 0};  // this query's translation; the sum of those since the last full query
   bool resume_ = false, refresh_ = false, queried_ = false;
+  bool active_ = true, sweep_ = false;  // references this frame; this query sweeps them
 };
 
 }  // namespace weft

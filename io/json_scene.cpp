@@ -153,7 +153,8 @@ std::string resolve(const std::string& json_path, const std::string& file) {
 void read_settings(const Node& n, Scene& s) {
   n.object({"fps", "frames", "substeps", "iterations", "collision_passes", "smoothing", "gravity", "wind", "damping",
             "impact_zone_smoothing", "collision_failsafe", "contact_solver", "ccd_span", "tethers", "collisions",
-            "contact_model", "early_pass_fraction", "max_early_passes", "pair_refresh", "nearest_margins", "chebyshev_rho",
+            "contact_model", "early_pass_fraction", "max_early_passes", "pair_refresh", "nearest_margins",
+            "predicted_reference", "chebyshev_rho",
             "chebyshev_delay"});
   SolverSettings& st = s.settings;
   st.fps = n.number("fps", st.fps, Range::Positive);
@@ -191,6 +192,7 @@ void read_settings(const Node& n, Scene& s) {
   st.collision.max_early_passes = n.integer("max_early_passes", st.collision.max_early_passes, 0);
   if (n.has("pair_refresh")) st.collision.pair_refresh = n["pair_refresh"].boolean();
   if (n.has("nearest_margins")) st.collision.nearest_margins = n["nearest_margins"].boolean();
+  if (n.has("predicted_reference")) st.collision.predicted_reference = n["predicted_reference"].boolean();
   if (n.has("ccd_span")) {
     const auto v = parse_ccd_span(n["ccd_span"].string());
     if (!v) n["ccd_span"].fail("expected \"substep\" or \"pass\"");

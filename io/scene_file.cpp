@@ -67,6 +67,7 @@ const Setting<bool> kBoolSettings[] = {
     collision("collision_failsafe", &CollisionSettings::collision_failsafe),
     collision("pair_refresh", &CollisionSettings::pair_refresh),
     collision("nearest_margins", &CollisionSettings::nearest_margins),
+    collision("predicted_reference", &CollisionSettings::predicted_reference),
     own("profile", &SolverSettings::profile),
 };
 const Setting<Vec3> kVecSettings[] = {
@@ -400,7 +401,8 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
   for (const auto& m : kBoolSettings) {
     const char* name = m.name;
     // Added after the first files of this format version were written: absent means the default.
-    const bool optional = std::strcmp(name, "collision_failsafe") == 0 || std::strcmp(name, "nearest_margins") == 0;
+    const bool optional = std::strcmp(name, "collision_failsafe") == 0 || std::strcmp(name, "nearest_margins") == 0 ||
+                          std::strcmp(name, "predicted_reference") == 0;
     // Absent in files written before it existed, whose passes all queried afresh.
     if (std::strcmp(name, "pair_refresh") == 0 && !h5::has_attribute(f, group, name)) {
       field(s, m) = false;

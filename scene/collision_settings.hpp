@@ -55,6 +55,7 @@ struct CollisionSettings {
   int max_early_passes = 4;              // proximity: early passes per substep at most
   bool pair_refresh = true;              // proximity: a pass may keep the last full query's self pairs
   bool nearest_margins = false;          // proximity: query margins grow no further than the nearest features
+  bool predicted_reference = false;      // proximity: bounds beside each point's own wanted move (docs/collisions.md)
   bool collision_failsafe = true;        // ccd model: move back points whose motion would cross cloth (collision/crossing_failsafe.hpp)
   ContactSolver contact_solver = ContactSolver::GaussSeidel;  // ccd model
   CcdSpan ccd_span = CcdSpan::Pass;                           // ccd model

@@ -137,6 +137,83 @@ TEST(WEFT_TEST_SUITE, proximity_refresh_measures_again_the_pairs_that_came_withi
   }
 }
 
+// With predicted_reference a point is bounded beside its own wanted move, not only the common translation.
+// Two triangles 1 cm apart and a third 1 m away that stands still (it pulls the common translation down):
+// - the two near ones both want 2 cm sideways: their moves differ by nothing, so they keep them (and the
+//   far one stays), where without references every point is cut back beside the common translation;
+// - they want 8 mm towards each other: their moves differ by more than half the gap, so the pair anchors
+//   all six corners to the common translation, and the gap keeps (1 - 2 gamma) of itself.
+struct ThreeTriangles {
+  using Exec = WEFT_TEST_EXECSPACE;
+  using Mem = Exec::memory_space;
+  static constexpr real gap = 0.01, th = 0.001;
+  std::vector<Vec3> x0h{{0, 0, 0},   {0.1, 0, 0},   {0, 0, 0.1},   {0.01, gap, 0.01}, {0.05, gap, 0.01},
+                        {0.01, gap, 0.05}, {0, 1, 0}, {0.1, 1, 0}, {0, 1, 0.1}};
+  Kokkos::View<int* [3], Mem> tris{"tris", 3};
+  Kokkos::View<Vec3*, Mem> x0 = weft::test::to_device<Exec, Vec3>(x0h, "x0");
+  Kokkos::View<real*, Mem> w = weft::test::to_device<Exec, real>(std::vector<real>(9, 1.0), "w");
+  Kokkos::View<weft::IndexPair*, Mem> pairs = weft::test::to_device<Exec, weft::IndexPair>({{0, 1}}, "pairs");
+  Kokkos::View<uint32_t*, Mem> hits{"hits", 1};
+  weft::SideMesh<Mem> cloth;
+  ThreeTriangles() {
+    auto tm = Kokkos::create_mirror_view(tris);
+    for (int t = 0; t < 3; ++t)
+      for (int k = 0; k < 3; ++k) tm(t, k) = 3 * t + k;
+    Kokkos::deep_copy(tris, tm);
+    cloth.tris = tris;
+    cloth.rmask = weft::test::to_device<Exec, uint8_t>({0x3F, 0x3F, 0x3F}, "rmask");
+    cloth.thickness = weft::test::to_device<Exec, real>(std::vector<real>(9, th), "th");
+  }
+  // The first query of a substep whose prediction moves the near points by `lower` and `upper`: where the
+  // points stand after its truncation, the points cut back and the points anchored.
+  struct Result {
+    std::vector<Vec3> x;
+    long cut, anchored;
+  };
+  Result query(bool references, Vec3 lower, Vec3 upper) {
+    weft::BoundSettings bs;
+    bs.predicted_reference = references;
+    const auto margins = weft::test::to_device<Exec, real>({0.02, 0.02, 0.02}, "margins");
+    weft::DisplacementBounds<Exec> b(9, margins, margins, bs);
+    std::vector<Vec3> wanted = x0h;
+    for (int i = 0; i < 6; ++i) wanted[i] += i < 3 ? lower : upper;
+    auto x = weft::test::to_device<Exec, Vec3>(wanted, "x");
+    b.prepare(Exec(), x0, x, w, tris, /*first*/ true);
+    cloth.x = cloth.xs = cloth.xo = b.x0();
+    weft::NarrowSettings ns;
+    ns.self = true;
+    if (references) b.add_self_pairs_with_references(Exec(), cloth, pairs, 1, w, hits, ns);
+    else b.add_pairs(Exec(), cloth, cloth, pairs, 1, b.relative_end(), w, hits, ns);
+    b.finish(Exec(), w);
+    b.truncate_prediction(Exec(), x, w);
+    Result r{std::vector<Vec3>(9), b.cut_count(Exec()), b.take_anchored()};
+    const auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x);
+    for (int i = 0; i < 9; ++i) r.x[size_t(i)] = xh(i);
+    return r;
+  }
+};
+
+TEST(WEFT_TEST_SUITE, proximity_references_keep_moves_that_keep_pairs_apart_and_anchor_those_that_close) {
+  ThreeTriangles s;
+  const real gamma = weft::BoundSettings{}.gamma;
+  const Vec3 side{0.02, 0, 0};
+  const auto with = s.query(true, side, side);
+  EXPECT_EQ(with.cut, 0);
+  EXPECT_EQ(with.anchored, 0);
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(with.x[size_t(i)], s.x0h[size_t(i)] + side) << "point " << i;
+  const auto without = s.query(false, side, side);
+  EXPECT_EQ(without.cut, 9);  // the far triangle too: it stays, 1.3 cm beside the common translation
+  const auto closing = s.query(true, Vec3{0, 0.008, 0}, Vec3{0, -0.008, 0});
+  EXPECT_EQ(closing.anchored, 6);
+  EXPECT_EQ(closing.cut, 6);
+  real top = -1, bottom = 1;
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_LE(weft::norm(closing.x[size_t(i)] - s.x0h[size_t(i)]), gamma * s.gap * (1 + 1e-9)) << "point " << i;
+    if (i < 3) top = std::max(top, closing.x[size_t(i)].y); else bottom = std::min(bottom, closing.x[size_t(i)].y);
+  }
+  EXPECT_GE(bottom - top, (1 - 2 * gamma) * s.gap * (1 - 1e-9));
+}
+
 // The twist winds the sheet into a rope: the contacts never converge in the schedule's iterations, yet
 // nothing crosses and nothing is moved back. Pins reach their targets within their bounds like every other
 // point, so they sit exactly on their animation until the rope jams next to them (from frame 25 at this
@@ -203,6 +280,14 @@ TEST(WEFT_TEST_SUITE, proximity_folding_sheet_stays_free_of_intersections) {
 TEST(WEFT_TEST_SUITE, proximity_nearest_margins_fold_the_sheet_without_intersections) {
   weft::Scene s = weft::io::make_builtin_scene("drape-sphere", {14});
   s.settings.collision.nearest_margins = true;
+  fold_sheet_without_intersections(s);
+}
+
+// Bounds beside each point's own wanted move (predicted_reference) let the falling sheet follow its
+// prediction, and the pairs that close anchor their points: nothing crosses.
+TEST(WEFT_TEST_SUITE, proximity_predicted_reference_folds_the_sheet_without_intersections) {
+  weft::Scene s = weft::io::make_builtin_scene("drape-sphere", {14});
+  s.settings.collision.predicted_reference = true;
   fold_sheet_without_intersections(s);
 }
 

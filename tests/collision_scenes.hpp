@@ -274,6 +274,10 @@ TEST(WEFT_TEST_SUITE, collision_scene_hash_is_pinned) {
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "bdf7989cd653f5c3");
   s.settings.collision.nearest_margins = false;
+  s.settings.collision.predicted_reference = true;  // bounds beside each point's own wanted move
+  weft::test::run_frames<Exec>(s, 12, &h);
+  EXPECT_EQ(weft::hash_hex(h), "61bf863db81030f9");
+  s.settings.collision.predicted_reference = false;
   s.settings.collision.contact_model = weft::ContactModel::Ccd;
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "303d4c051ec83421");  // either CCD span; no Chebyshev with the ccd model

@@ -44,7 +44,7 @@ const char* kScene = R"({
                "smoothing": 2, "gravity": [0, -10, 0], "wind": [1, 0, 0], "damping": 0.5,
                "impact_zone_smoothing": false, "contact_solver": "jacobi", "ccd_span": "substep",
                "tethers": 1.1, "contact_model": "ccd", "early_pass_fraction": 0.05, "max_early_passes": 2,
-               "pair_refresh": false, "nearest_margins": true},
+               "pair_refresh": false, "nearest_margins": true, "predicted_reference": true},
   "cloth": [
     {"obj": "flag.obj", "material": {"density": 0.2, "thickness": 0.003}, "pins": [{"points": [0, 3]}]},
     {"generator": "grid", "res": [4, 2], "origin": [0, 2, 0], "u": [1, 0, 0], "v": [0, 0, 0.5],
@@ -113,6 +113,7 @@ TEST(WEFT_TEST_SUITE, io_json_scene_gives_the_expected_scene) {
   EXPECT_EQ(st.collision.max_early_passes, 2);
   EXPECT_FALSE(st.collision.pair_refresh);
   EXPECT_TRUE(st.collision.nearest_margins);
+  EXPECT_TRUE(st.collision.predicted_reference);
 
   const ClothPoints &p = s.points, &q = want.points;
   ASSERT_EQ(p.size(), 4u + 15u);
