@@ -79,21 +79,20 @@ struct PreparePoints {
     const Vec3 target = wanted_position(x, deficit, pending, w, i, resume);
     dmin(i) = kFar;
     if (!refresh) qmin(i) = kFar;  // a refresh keeps the last full query's margins
+    // Margins grow with the whole wanted move, with references too: a point's bound beside its reference
+    // is gamma Q, and a free sheet held to the floor's Q stretched twice as far (the 100K hanging sheet's
+    // p99 strain 0.13 -> 0.29).
+    if (free) want(i) = max_(want(i), norm(target - x0(i) - t));
+    Vec3 rel = x0(i), go = x0(i) + t;
     if (reference) {
       const Vec3 r = free && sweep ? target - x0(i) - t : Vec3{0, 0, 0};
       ref(i) = r;
       anchor(i) = 0;
-      // Margins grow with the whole wanted move, as without references: a point's bound beside its
-      // reference is gamma Q, and a free sheet held to the floor's Q stretched twice as far (the 100K
-      // hanging sheet's p99 strain 0.13 -> 0.29).
-      if (free) want(i) = max_(want(i), norm(target - x0(i) - t));
-      xrel(i) = free ? x0(i) + r : x(i) - t;
-      xb(i) = free ? x0(i) + t + r : x(i);
-      return;
+      rel += r;
+      go += r;
     }
-    if (free) want(i) = max_(want(i), norm(target - x0(i) - t));
-    xrel(i) = free ? x0(i) : x(i) - t;
-    xb(i) = free ? x0(i) + t : x(i);
+    xrel(i) = free ? rel : x(i) - t;
+    xb(i) = free ? go : x(i);
   }
 };
 

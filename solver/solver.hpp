@@ -231,17 +231,18 @@ class Solver {
         // Tethers are limits, not targets: the blend must not leave a point past its tether.
         const bool tethers = tethers_.extent(0) > 0;
         const bool keep = saving && cheb_xc_.extent(0) > 0;  // the points as this iteration leaves them
+        const bool blend_keeps = omega != 1 && !tethers;      // the blend writes them, else a copy does
         if (omega != 1) {
           Kokkos::parallel_for("weft::chebyshev_blend", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
                                kernels::ChebyshevBlend<Mem>{state_.x, cheb_xk_, cheb_xkm1_, cheb_xc_, state_.w, omega,
-                                                            keep && !tethers});
+                                                            keep && blend_keeps});
           Kokkos::parallel_for("weft::chebyshev_blend_lambda", Kokkos::RangePolicy<Exec>(exec_, 0, lambda_.extent(0)),
                                kernels::ChebyshevBlendLambda<Mem>{lambda_, cheb_lk_, cheb_lkm1_, omega});
           if (tethers)
             Kokkos::parallel_for("weft::project_tethers", Kokkos::RangePolicy<Exec>(exec_, 0, tethers_.extent(0)),
                                  kernels::ProjectTethers<Mem>{tethers_, state_.x});
         }
-        if (keep && !(omega != 1 && !tethers)) Kokkos::deep_copy(exec_, cheb_xc_, state_.x);
+        if (keep && !blend_keeps) Kokkos::deep_copy(exec_, cheb_xc_, state_.x);
       });
       if (!collision_) continue;
       timed("weft::contacts", schedule_.seconds_contacts, [&] { collision_->project(state_, h); });
