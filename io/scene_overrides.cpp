@@ -109,6 +109,12 @@ const std::vector<Entry>& entries() {
        [](Scene& s, const std::string& v) { s.settings.collision.static_friction = to_real(v); }},
       {"dynamic_friction", "number >= 0: the solver's dynamic scale (times each point's dynamic friction)",
        [](Scene& s, const std::string& v) { s.settings.collision.dynamic_friction = to_real(v); }},
+      {"layer_shock", "number >= 1: in a contact between layers, the lower layer acts this many times heavier than what it carries (1: off)",
+       [](Scene& s, const std::string& v) {
+         const real k = to_real(v, Range::Positive);
+         if (k < 1) throw BadValue{"expected a number >= 1 (1: off), got " + v};
+         s.settings.collision.layer_shock = k;
+       }},
       {"contact_model", "proximity | ccd",
        [](Scene& s, const std::string& v) { s.settings.collision.contact_model = *parse_contact_model(one_of(v, {"proximity", "ccd"})); }},
       {"pair_refresh", "on | off: proximity passes may keep the last full query's self pairs",

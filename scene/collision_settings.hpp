@@ -45,7 +45,7 @@ struct CollisionSettings {
   bool self_collision = true;
   real static_friction = 0.5;            // Vellum "static threshold", times the points' friction scales
   real dynamic_friction = 0.5;           // Vellum "dynamic scale", times the points' dynamicfriction scales
-  real layer_shock = 4;                  // lower layers act this much heavier in contacts with higher ones
+  real layer_shock = 4;                  // a lower layer acts this much heavier than what it carries (contact.hpp)
   real parallel_edge_degrees = 10;       // self edge-edge pairs closer to parallel than this are dropped
   bool impact_zone_smoothing = true;     // paper 2.3: Laplacian smoothing of velocities in unresolved contacts
   real impact_zone_epsilon = 0.1;        // contacts with C < -epsilon * thickness are smoothed

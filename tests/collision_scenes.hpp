@@ -76,6 +76,48 @@ TEST(WEFT_TEST_SUITE, layer_drop_lands_fifty_layers_without_intersections) {
     ASSERT_GT(weft::norm(p - Vec3{0, 0.4, 0}), 0.3 - 0.002);
 }
 
+// Layer shock: a light sheet (0.1 kg/m^2) under one a thousand times heavier, dropped on a sphere (the
+// stability case mass-ratio-1000 at a quarter of its size). The lower layer acts layer_shock times heavier
+// than what it carries, so it holds the heavy sheet instead of being pressed into the sphere and stretched
+// (a lower point scaled by its own mass alone: max strain 0.22 and still sliding at frame 48).
+TEST(WEFT_TEST_SUITE, layer_shock_lets_a_light_layer_carry_one_a_thousand_times_heavier) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  weft::Scene s = weft::test::empty_scene("mass-ratio");
+  const real density[2] = {0.1, 100};
+  const weft::io::Mesh sheets[2] = {weft::io::grid(12, 12, {-0.6, 0.75, -0.6}, {1.2, 0, 0}, {0, 0, 1.2}),
+                                    weft::io::grid(8, 8, {-0.4, 0.775, -0.4}, {0.8, 0, 0}, {0, 0, 0.8})};
+  for (int l = 0; l < 2; ++l) {
+    weft::ClothMaterial mat;
+    mat.density = density[l];
+    mat.layer = l;
+    mat.thickness = 0.004;
+    weft::add_cloth_piece(s, sheets[l].x, sheets[l].tris, mat);
+  }
+  const weft::io::Mesh ball = weft::io::uv_sphere({0, 0.4, 0}, 0.3, 32, 64);
+  weft::Collider c;
+  c.name = "sphere";
+  c.triangles = ball.tris;
+  c.motion.frames.push_back(ball.x);
+  c.thickness = 0.002;
+  s.colliders.push_back(c);
+  s.settings.frame_end = 30;
+  s.needs_collisions = true;
+  weft::SimulationOn<Exec> sim(s);
+  real worst = 0;
+  weft::FrameStats fs;
+  for (int f = 0; f < 29; ++f) {
+    fs = sim.step_frame();
+    ASSERT_EQ(fs.non_finite, 0);
+    worst = std::max(worst, fs.max_strain);
+  }
+  std::printf("light layer under a heavy one: max strain over frames 2-30 %.4f, rms speed at frame 30 %.3e m/s\n", worst,
+              fs.rms_speed);
+  EXPECT_GT(fs.collision.contacts, 0);
+  EXPECT_LT(worst, 0.05);
+  EXPECT_EQ(sim.intersections(), 0);
+  for (const Vec3& p : sim.positions()) ASSERT_GT(weft::norm(p - Vec3{0, 0.4, 0}), 0.3 - 0.002);
+}
+
 // How deep inside the box (moving along +z at 10 m/s) a point is, 0 outside; `behind`: a point in the box's
 // footprint behind it, where only a point the box jumped past could be.
 real depth_in_box(const Vec3& p, real z, bool& behind) {
@@ -180,9 +222,11 @@ TEST(WEFT_TEST_SUITE, layer_stack_settles_with_substep_long_ccd) {
   EXPECT_LT(substep, 1e-3);
 }
 
-// The paper's Fig. 4 case: layers squeezed under a press too heavy for the contacts to converge in the
-// schedule's iterations (paper-3: 10 iterations, 1 pass, 20 substeps). Impact-zone smoothing calms the
-// squeezed zone; without it the stack jitters.
+// The paper's Fig. 4 case: layers squeezed under a press 2000 times heavier than each of them (paper-3:
+// 10 iterations, 1 pass, 20 substeps). The layers below carry the press (layer shock), so the stack comes
+// to rest whether or not impact-zone smoothing runs; with a lower layer scaled by its own mass alone
+// (before the carrying layer shock) the contacts did not converge, and only smoothing calmed them (6.5e-2
+// against 2.6e-1 m/s).
 real squeezed_rms_speed(bool smoothing) {
   using Exec = WEFT_TEST_EXECSPACE;
   weft::Scene s = weft::io::make_builtin_scene("layer-stack", {4});
@@ -200,13 +244,15 @@ real squeezed_rms_speed(bool smoothing) {
     EXPECT_EQ(fs.non_finite, 0);
     if (f >= 18) sum += fs.rms_speed;  // the last half second
   }
+  EXPECT_EQ(sim.intersections(), 0);
   return sum / 12;
 }
 
-TEST(WEFT_TEST_SUITE, impact_zone_smoothing_calms_a_squeezed_layer_stack) {
+TEST(WEFT_TEST_SUITE, heavy_press_comes_to_rest_on_the_layers_it_squeezes) {
   const real on = squeezed_rms_speed(true), off = squeezed_rms_speed(false);
   std::printf("squeezed layer-stack mean rms speed over frames 20-31: smoothing on %.3e m/s, off %.3e m/s\n", on, off);
-  EXPECT_LT(on * 3, off);
+  EXPECT_LT(on, 1e-3);
+  EXPECT_LT(off, 1e-3);
 }
 
 // Twisted two turns each way, the contacts of the rope do not converge: the crossing fail-safe keeps the
@@ -254,10 +300,10 @@ TEST(WEFT_TEST_SUITE, jacobi_contacts_hash_is_pinned) {
   s.settings.collision.contact_solver = weft::ContactSolver::Jacobi;
   uint64_t h = 0;
   weft::test::run_frames<Exec>(s, 12, &h);
-  EXPECT_EQ(weft::hash_hex(h), "be259a0d72994ed1");
+  EXPECT_EQ(weft::hash_hex(h), "2a085192dfcf2f12");
   s.settings.collision.ccd_span = weft::CcdSpan::Substep;  // every pass's CCD over the whole substep
   weft::test::run_frames<Exec>(s, 12, &h);
-  EXPECT_EQ(weft::hash_hex(h), "745566c2d0d00b9d");
+  EXPECT_EQ(weft::hash_hex(h), "8ceefbe33d9e6ebb");
 }
 
 TEST(WEFT_TEST_SUITE, collision_scene_hash_is_pinned) {

@@ -44,7 +44,7 @@ const char* kScene = R"({
                "smoothing": 2, "gravity": [0, -10, 0], "wind": [1, 0, 0], "damping": 0.5,
                "impact_zone_smoothing": false, "contact_solver": "jacobi", "ccd_span": "substep",
                "tethers": 1.1, "contact_model": "ccd", "early_pass_fraction": 0.05, "max_early_passes": 2,
-               "pair_refresh": false, "nearest_margins": true, "predicted_reference": true},
+               "pair_refresh": false, "nearest_margins": true, "predicted_reference": true, "layer_shock": 10},
   "cloth": [
     {"obj": "flag.obj", "material": {"density": 0.2, "thickness": 0.003}, "pins": [{"points": [0, 3]}]},
     {"generator": "grid", "res": [4, 2], "origin": [0, 2, 0], "u": [1, 0, 0], "v": [0, 0, 0.5],
@@ -114,6 +114,7 @@ TEST(WEFT_TEST_SUITE, io_json_scene_gives_the_expected_scene) {
   EXPECT_FALSE(st.collision.pair_refresh);
   EXPECT_TRUE(st.collision.nearest_margins);
   EXPECT_TRUE(st.collision.predicted_reference);
+  EXPECT_EQ(st.collision.layer_shock, 10);
 
   const ClothPoints &p = s.points, &q = want.points;
   ASSERT_EQ(p.size(), 4u + 15u);
@@ -233,6 +234,7 @@ TEST(WEFT_TEST_SUITE, io_json_errors_name_file_and_path) {
       {R"({"settings": {"contact_model": "ipc"}})", ": settings.contact_model: expected \"proximity\" or \"ccd\""},
       {R"({"settings": {"pair_refresh": 1}})", ": settings.pair_refresh: expected true or false"},
       {R"({"settings": {"tethers": 0.9}})", ": settings.tethers: expected 0 (no tethers) or a stretch of at least 1"},
+      {R"({"settings": {"layer_shock": 0.5}})", ": settings.layer_shock: expected a number >= 1 (1: off)"},
       {cloth0 + R"({"generator": "grid", "material": {"density": "heavy"}}]})",
        ": cloth[1].material.density: expected a number"},
       {cloth0 + R"({"generator": "grid", "material": {"density": -1}}]})",
