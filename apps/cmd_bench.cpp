@@ -30,7 +30,7 @@ struct Result {
   double ms_build = 0, ms_broad = 0, ms_narrow = 0, ms_colouring = 0;
   double contacts = 0, failsafe_rounds = 0;  // means per frame
   double passes_per_frame = 0;                          // collision passes, scheduled and early
-  double queries = 0, early_passes = 0, cut_back = 0;  // proximity contacts: means per frame
+  double queries = 0, early_passes = 0, still_passes = 0, cut_back = 0;  // proximity contacts: means per frame
   long intersections = 0;                    // the largest of the timed frames' (cloth triangle pairs)
   double pin_lag = 0;                        // m, the largest of the timed frames'
   double max_strain = 0, p99_strain = 0;     // the largest of the timed frames' (accuracy, not speed)
@@ -81,6 +81,7 @@ Result bench_one(Backend b, Scene scene, const Options& o, const std::string& sc
     r.failsafe_rounds += double(fs.collision.failsafe_rounds) / o.frames;
     r.queries += double(fs.collision.queries) / o.frames;
     r.early_passes += double(fs.collision.early_passes) / o.frames;
+    r.still_passes += double(fs.collision.still_passes) / o.frames;
     r.cut_back += double(fs.collision.points_cut_back) / o.frames;
     r.max_strain = fs.max_strain > r.max_strain ? fs.max_strain : r.max_strain;
     r.p99_strain = std::max(r.p99_strain, double(fs.p99_strain));
@@ -143,8 +144,8 @@ int bench(const GlobalOptions& g, const Options& o) {
                   "contact colouring %.3f ms\n", "", r.ms_build, r.ms_broad, r.ms_narrow, r.ms_colouring);
       if (proximity)
         std::printf("%-9s proximity: %.1f passes per frame (%.1f early), %.1f of them full queries (the others kept "
-                    "their pairs), %.0f points cut back per frame\n", "", r.passes_per_frame, r.early_passes, r.queries,
-                    r.cut_back);
+                    "their pairs), %.1f still, %.0f points cut back per frame\n", "", r.passes_per_frame, r.early_passes,
+                    r.queries, r.still_passes, r.cut_back);
     }
     results.push_back(r);
   }
@@ -167,6 +168,7 @@ int bench(const GlobalOptions& g, const Options& o) {
           << ", \"max_pin_lag\": " << r.pin_lag
           << ", \"passes_per_frame\": " << r.passes_per_frame
           << ", \"queries\": " << r.queries << ", \"early_passes\": " << r.early_passes
+          << ", \"still_passes\": " << r.still_passes
           << ", \"points_cut_back\": " << r.cut_back
           << ", \"memory_bytes\": " << r.memory << "}";
     }

@@ -46,7 +46,7 @@ void print_settings(const SolverSettings& s, bool fem_rows = false) {
     std::cout << " (early passes at " << c.early_pass_fraction << " of the points cut back, at most "
               << c.max_early_passes << " a substep; pair refresh " << (c.pair_refresh ? "on" : "off")
               << "; nearest margins " << (c.nearest_margins ? "on" : "off") << "; predicted reference "
-              << (c.predicted_reference ? "on" : "off") << ")";
+              << (c.predicted_reference ? "on" : "off") << "; still tolerance " << c.still_tolerance << ")";
   std::cout << "\n"
             << "  impact zone smoothing " << (c.impact_zone_smoothing ? "on" : "off") << " (epsilon "
             << c.impact_zone_epsilon << ", " << c.impact_zone_sweeps << " sweeps), crossing fail-safe "

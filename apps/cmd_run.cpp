@@ -115,8 +115,8 @@ class Progress {
       std::printf("frame %d  ke %.3e J  rms speed %.3e m/s  max strain %.3e  contacts %ld  ", fs.frame,
                   fs.kinetic_energy, fs.rms_speed, fs.max_strain, fs.collision.contacts);
       if (fs.collision.queries > 0)  // proximity contacts
-        std::printf("passes %ld (%ld early, %ld full queries)  cut back %ld", fs.schedule.collision_passes, fs.collision.early_passes,
-                    fs.collision.queries, fs.collision.points_cut_back);
+        std::printf("passes %ld (%ld early, %ld full queries, %ld still)  cut back %ld", fs.schedule.collision_passes,
+                    fs.collision.early_passes, fs.collision.queries, fs.collision.still_passes, fs.collision.points_cut_back);
       else
         std::printf("moved back %ld (%ld pinned, %ld fail-safe rounds)", fs.collision.failsafe_points, fs.collision.failsafe_pinned,
                     fs.collision.failsafe_rounds);

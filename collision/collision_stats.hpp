@@ -12,6 +12,7 @@ struct CollisionStats {
   long queries = 0;             // proximity: passes that queried pairs afresh (the others kept the last query's
                                 // self pairs: CollisionSettings::pair_refresh)
   long early_passes = 0;        // proximity: passes run early because many points were cut back to their bounds
+  long still_passes = 0;        // proximity: refreshes that found the cloth still and kept the last measured contacts
   long points_cut_back = 0;     // proximity: points cut back to their bounds, summed over the truncations
   // With SolverSettings::profile (fenced): the trees' build at each substep's start, and the parts of the
   // collision passes (refit and queries, narrow phase, contact colouring).

@@ -426,6 +426,43 @@ struct Truncate {
   }
 };
 
+// Per bounded point (at a refresh that may be still): how far it has moved, beside the translations since,
+// from where the last measured pass saw it (xm); a pinned point also the move it still wants beside t.
+// The largest of these, R, bounds how much any measured pair has closed since and can close by its pinned
+// corners: a still pass takes its distances as d - 4R (StillDistances).
+template <class Mem>
+struct StillMoves {
+  Kokkos::View<const Vec3*, Mem> x, x0, xm, deficit;
+  Kokkos::View<const int*, Mem> pending;
+  Kokkos::View<const real*, Mem> w;
+  Kokkos::View<real*, Mem> moved;
+  Vec3 tm, t;
+  bool resume, pins;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    const bool free = w(i) > 0;
+    if (!(pins || free)) {
+      moved(i) = 0;
+      return;
+    }
+    real m = norm(x0(i) - xm(i) - tm);
+    if (!free) m += norm(wanted_position(x, deficit, pending, w, i, resume) - x0(i) - t);
+    moved(i) = m;
+  }
+};
+
+// Per point, at a still pass: the nearest self distance of the last measured pass less `less` (4R rounded
+// up), never below 0.
+template <class Mem>
+struct StillDistances {
+  Kokkos::View<const Fixed*, Mem> dself;
+  Kokkos::View<Fixed*, Mem> dmin;
+  Fixed less;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    const Fixed d = dself(i);
+    dmin(i) = d > less ? d - less : Fixed(0);
+  }
+};
+
 template <class Mem>
 struct MarkMovable {
   Kokkos::View<const real*, Mem> w;
@@ -443,6 +480,7 @@ struct BoundSettings {
   bool nearest_margins = false;  // margins grow no further than their corners' nearest features (TriangleMargins)
   bool predicted_reference = false;  // each point bounded beside its own wanted move (PairDistances' Ref)
   int max_anchor_rounds = 3;     // then every point is anchored to t, and references rest until the next frame
+  real still_distance = 0;       // a refresh is still while no point moved more than this since the last measured pass (0: never)
 };
 
 // The bounds' working memory and kernels. Usage per query: prepare() (the common translation and the
@@ -538,6 +576,10 @@ class DisplacementBounds {
                          PreparePoints<Mem>{x, x0_, deficit_, pending_, w, want_, xrel_, xb_, ref_, anchor_, dmin_,
                                             qmin_, t_, resume_, s_.bound_pins, refresh_, s_.predicted_reference,
                                             sweep_});
+    still_ = refresh_ && measured_ && s_.still_distance > 0 && still_moves(exec, x, w) <= s_.still_distance;
+    if (still_)
+      Kokkos::parallel_for("weft::bounds_still", Kokkos::RangePolicy<Exec>(exec, 0, n),
+                           StillDistances<Mem>{dself_, dmin_, to_fixed(4 * moved_max_) + 1});
     if (refresh_) return;
     Kokkos::parallel_for("weft::bounds_margins", Kokkos::RangePolicy<Exec>(exec, 0, tris.extent(0)),
                          TriangleMargins<Mem>{tris, floor_, ceiling_, want_, near_, margin_, qmin_, s_.gamma,
@@ -560,6 +602,27 @@ class DisplacementBounds {
     Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n),
                          bounds_detail::PairDistances<Mem>{A, B, pairs, xend, w, margin_, dmin_, s_.detect_scale,
                                                            s_.bound_pins, hits, ns});
+  }
+
+  // A still pass (prepare() decided): the last measured pass's self contacts stand, and its nearest self
+  // distances, less what the cloth can have closed since, bound the points (docs/collisions.md, "Still
+  // passes"). Where still passes are on, a pass that measured its self pairs records them here: their
+  // distances (the points' nearest so far, before any collider pair), where it stood and its contacts.
+  bool still() const { return still_; }
+  long still_self_contacts() const { return nself_contacts_; }
+  void measured_self(const Exec& exec, long self_contacts) {
+    if (!(s_.still_distance > 0)) return;
+    const long n = long(x0_.extent(0));
+    if (long(dself_.extent(0)) != n) {
+      dself_ = View<bounds_detail::Fixed*>("weft::bounds_dself", n);
+      xm_ = View<Vec3*>("weft::bounds_xm", n);
+      moved_ = View<real*>("weft::bounds_moved", n);
+    }
+    Kokkos::deep_copy(exec, dself_, dmin_);
+    Kokkos::deep_copy(exec, xm_, x0_);
+    tm_ = Vec3{0, 0, 0};
+    nself_contacts_ = self_contacts;
+    measured_ = true;
   }
 
   // Self pairs (A the cloth at X0) with reference moves: the pairs run in rounds until no pair anchors a
@@ -613,6 +676,7 @@ class DisplacementBounds {
       Kokkos::parallel_for("weft::bounds_reference_end", Kokkos::RangePolicy<Exec>(exec, 0, x0_.extent(0)),
                            bounds_detail::ReferenceEnd<Mem>{x0_, ref_, xq_});
     tq_ = tq_ + t_;
+    tm_ = tm_ + t_;
   }
 
   // Cuts every point back to its bound around X0 + t, marking the points cut back.
@@ -630,6 +694,15 @@ class DisplacementBounds {
   long cut_count(const Exec& exec) const { return sum_counts(exec, cut_); }
 
  private:
+  // R: the largest StillMoves since the last measured pass (an exact maximum, read back once).
+  real still_moves(const Exec& exec, const View<Vec3*>& x, const View<real*>& w) {
+    Kokkos::parallel_for("weft::bounds_still_moves", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
+                         bounds_detail::StillMoves<Mem>{x, x0_, xm_, deficit_, pending_, w, moved_, tm_, t_, resume_,
+                                                        s_.bound_pins});
+    moved_max_ = max_fixed(exec, moved_);
+    return moved_max_;
+  }
+
   void run_truncate(const Exec& exec, const View<Vec3*>& x, const View<real*>& w, bool carry, bool resume) {
     Kokkos::parallel_for("weft::bounds_truncate", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
                          bounds_detail::Truncate<Mem>{x, x0_, w, bound_, want_, deficit_, pending_, cut_, ref_, t_,
@@ -655,6 +728,15 @@ class DisplacementBounds {
   Vec3 t_{0, 0, 0}, tq_{0, 0, 0};  // this query's translation; the sum of those since the last full query
   bool resume_ = false, refresh_ = false, queried_ = false;
   bool active_ = true, sweep_ = false;  // references this frame; this query sweeps them
+  // Still passes: the last measured pass's nearest self distances, positions (X0) and self contacts; the
+  // translations since; this pass's R and whether it is still.
+  View<bounds_detail::Fixed*> dself_;
+  View<Vec3*> xm_;
+  View<real*> moved_;
+  Vec3 tm_{0, 0, 0};
+  long nself_contacts_ = 0;
+  real moved_max_ = 0;
+  bool measured_ = false, still_ = false;
 };
 
 }  // namespace weft

@@ -334,6 +334,40 @@ KOKKOS_INLINE_FUNCTION Contact make_ee(const SideMesh<Mem>& SA, int A, int ka, c
 
 }  // namespace narrow_detail
 
+// A self contact's closest points, normal and layer shock measured again where the cloth stands
+// (cloth.x), as make_vf and make_ee would give them there; it keeps its points and separation. Layer shock
+// goes by the sign of each point's weight, so a point whose weight was 0 takes its side again.
+template <class Mem>
+struct RemeasureSelfContacts {
+  Kokkos::View<Contact*, Mem> c;
+  SideMesh<Mem> cloth;
+  NarrowSettings ns;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    const auto& x = cloth.x;
+    Contact k = c(i);
+    Vec3 n;
+    if (k.kind == kContactVF) {
+      const Vec3 p = x(k.p[0]), a = x(k.p[1]), b = x(k.p[2]), c3 = x(k.p[3]);
+      real u, v, w;
+      point_triangle_distance2(p, a, b, c3, u, v, w);
+      k.b[1] = -u; k.b[2] = -v; k.b[3] = -w;
+      n = normalized(cross(b - a, c3 - a));
+      if (dot(n, p - (u * a + v * b + w * c3)) < 0) n = -n;
+    } else {
+      const Vec3 a0 = x(k.p[0]), a1 = x(k.p[1]), b0 = x(k.p[2]), b1 = x(k.p[3]);
+      real sa, tb;
+      segment_segment_distance2(a0, a1, b0, b1, sa, tb);
+      k.b[0] = 1 - sa; k.b[1] = sa; k.b[2] = -(1 - tb); k.b[3] = -tb;
+      n = normalized(cross(a1 - a0, b1 - b0));
+      if (dot(n, ((1 - sa) * a0 + sa * a1) - ((1 - tb) * b0 + tb * b1)) < 0) n = -n;
+    }
+    k.n = n;
+    for (int s = 0; s < 4; ++s) k.wscale[s] = 1;
+    narrow_detail::finish_contact(k, cloth, k.p[0], cloth, k.p[k.kind == kContactVF ? 1 : 2], true, ns);
+    c(i) = k;
+  }
+};
+
 // Writes the contacts of a pair's mask, in bit order, starting at out(first).
 template <class Mem, class OutView>
 KOKKOS_INLINE_FUNCTION void fill_contacts(const SideMesh<Mem>& SA, int A, const SideMesh<Mem>& SB, int B, uint32_t m,

@@ -19,7 +19,7 @@ using Dims = std::vector<hsize_t>;
 
 // The per-frame statistics table: one compound row per frame, fields named as in FrameStats and the structs
 // of its stages (the collision stage's `queries` as `collision_queries`).
-static_assert(sizeof(FrameStats) == 224, "FrameStats changed: update kStatsFields");
+static_assert(sizeof(FrameStats) == 232, "FrameStats changed: update kStatsFields");
 constexpr size_t in_collision(size_t offset) { return offsetof(FrameStats, collision) + offset; }
 constexpr size_t in_schedule(size_t offset) { return offsetof(FrameStats, schedule) + offset; }
 enum class Kind { I32, I64, F64 };
@@ -57,6 +57,7 @@ const StatsField kStatsFields[] = {
     {"seconds_contact_colouring", in_collision(offsetof(CollisionStats, seconds_contact_colouring)), Kind::F64},
     {"p99_strain", offsetof(FrameStats, p99_strain), Kind::F64},
     {"max_edge_strain", offsetof(FrameStats, max_edge_strain), Kind::F64},
+    {"still_passes", in_collision(offsetof(CollisionStats, still_passes)), Kind::I64},
 };
 
 // In memory: FrameStats. In the file: the same fields packed, little-endian.

@@ -154,7 +154,7 @@ void read_settings(const Node& n, Scene& s) {
   n.object({"fps", "frames", "substeps", "iterations", "collision_passes", "smoothing", "gravity", "wind", "damping",
             "impact_zone_smoothing", "collision_failsafe", "contact_solver", "ccd_span", "tethers", "collisions",
             "contact_model", "early_pass_fraction", "max_early_passes", "pair_refresh", "nearest_margins",
-            "predicted_reference", "layer_shock", "chebyshev_rho",
+            "predicted_reference", "layer_shock", "still_tolerance", "chebyshev_rho",
             "chebyshev_delay"});
   SolverSettings& st = s.settings;
   st.fps = n.number("fps", st.fps, Range::Positive);
@@ -193,6 +193,7 @@ void read_settings(const Node& n, Scene& s) {
   if (n.has("pair_refresh")) st.collision.pair_refresh = n["pair_refresh"].boolean();
   if (n.has("nearest_margins")) st.collision.nearest_margins = n["nearest_margins"].boolean();
   if (n.has("predicted_reference")) st.collision.predicted_reference = n["predicted_reference"].boolean();
+  st.collision.still_tolerance = n.number("still_tolerance", st.collision.still_tolerance, Range::NonNegative);
   st.collision.layer_shock = n.number("layer_shock", st.collision.layer_shock, Range::Positive);
   if (st.collision.layer_shock < 1) n["layer_shock"].fail("expected a number >= 1 (1: off)");
   if (n.has("ccd_span")) {

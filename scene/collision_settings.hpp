@@ -52,6 +52,8 @@ struct CollisionSettings {
   int impact_zone_sweeps = 4;
   ContactModel contact_model = ContactModel::Proximity;
   real early_pass_fraction = 0.01;       // proximity: a pass runs early when more of the moving points were cut back
+  real still_tolerance = 0.1;            // proximity: a refresh keeps the last measured contacts while no point moved
+                                         // more than this times the thinnest cloth thickness since (0: off)
   int max_early_passes = 4;              // proximity: early passes per substep at most
   bool pair_refresh = true;              // proximity: a pass may keep the last full query's self pairs
   bool nearest_margins = false;          // proximity: query margins grow no further than the nearest features

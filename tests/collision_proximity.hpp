@@ -25,11 +25,11 @@ struct TwoTriangles {
   const weft::BoundSettings bs;
   weft::DisplacementBounds<Exec> b;
 
-  TwoTriangles(real gap_, real margin)
+  TwoTriangles(real gap_, real margin, const weft::BoundSettings& settings = {})
       : gap(gap_), x0h{{0, 0, 0}, {0.1, 0, 0}, {0, 0, 0.1}, {0.01, gap_, 0.01}, {0.05, gap_, 0.01}, {0.01, gap_, 0.05}},
         x(weft::test::to_device<Exec, Vec3>(x0h, "x")),
         w(weft::test::to_device<Exec, real>(std::vector<real>(6, 1.0), "w")),
-        pairs(weft::test::to_device<Exec, weft::IndexPair>({{0, 1}}, "pairs")),
+        pairs(weft::test::to_device<Exec, weft::IndexPair>({{0, 1}}, "pairs")), bs(settings),
         b(6, weft::test::to_device<Exec, real>({margin, margin}, "margins"),
           weft::test::to_device<Exec, real>({margin, margin}, "margins"), bs) {
     auto tm = Kokkos::create_mirror_view(tris);
@@ -40,17 +40,20 @@ struct TwoTriangles {
     cloth.thickness = weft::test::to_device<Exec, real>(std::vector<real>(6, th), "th");
   }
   // A query from where the points stand (a full one, or a refresh); the bounds on the host. With
-  // `contacts`, the pair's contact bits are taken too, as the collision stage takes a self pair's.
+  // `contacts`, the pair's contact bits are taken too, as the collision stage takes a self pair's. A
+  // still refresh measures no pair, as in the collision stage.
   auto query(bool refresh = false, bool contacts = false) {
     b.prepare(Exec(), x, x, w, tris, /*first*/ true, refresh);
     cloth.x = cloth.xs = cloth.xo = b.x0();
-    if (contacts) {
+    if (b.still()) {
+    } else if (contacts) {
       weft::NarrowSettings ns;
       ns.self = true;
       b.add_pairs(Exec(), cloth, cloth, pairs, 1, b.relative_end(), w, hits, ns);
     } else {
       b.add_pairs(Exec(), cloth, cloth, pairs, 1, b.relative_end(), w);
     }
+    if (!b.still()) b.measured_self(Exec(), 0);
     b.finish(Exec(), w);
     return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.bounds());
   }
@@ -135,6 +138,43 @@ TEST(WEFT_TEST_SUITE, proximity_refresh_measures_again_the_pairs_that_came_withi
       EXPECT_NEAR(kept(i), expected, 1e-9) << "point " << i << " after " << up << " m";
     }
   }
+}
+
+// A still refresh (docs/collisions.md, "Still passes") measures no pair: while no point has moved more than
+// still_distance since the last measured pass, its nearest distances, less four times the largest move R,
+// bound the points. Two triangles 1 cm apart: the lower one moves up 50 µm (R, within 100 µm): the bounds
+// are gamma (1 cm - 4 R), below gamma times the true gap. Moved 300 µm, the refresh measures the pair
+// again.
+TEST(WEFT_TEST_SUITE, proximity_still_refresh_bounds_by_the_last_distances_less_what_moved) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  weft::BoundSettings settings;
+  settings.still_distance = 1e-4;
+  const real q = 0.011;
+  TwoTriangles s(0.01, q, settings);
+  const real gap = s.gap, gamma = s.bs.gamma;
+  const auto full = s.query();
+  EXPECT_FALSE(s.b.still());
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(full(i), gamma * gap, 1e-12) << "point " << i;
+  for (const real up : {5e-5, 3e-4}) {
+    std::vector<Vec3> moved = s.x0h;
+    for (int i = 0; i < 3; ++i) moved[i].y += up;
+    s.move_to(moved);
+    const auto kept = s.query(true);
+    const bool still = up <= settings.still_distance;
+    EXPECT_EQ(s.b.still(), still) << up << " m";
+    for (int i = 0; i < 6; ++i) {
+      const real expected = still ? gamma * (gap - 4 * up) : gamma * (gap - up);
+      EXPECT_NEAR(kept(i), std::min(expected, gamma * q - (i < 3 ? up : 0)), 1e-9) << "point " << i << " after " << up << " m";
+      EXPECT_LE(kept(i), gamma * (gap - up) * (1 + 1e-12));
+    }
+  }
+  // The distances of the pass that measured (3e-4 m) are the new reference: moving back down by 50 µm is still.
+  std::vector<Vec3> back = s.x0h;
+  for (int i = 0; i < 3; ++i) back[i].y += 2.5e-4;
+  s.move_to(back);
+  const auto again = s.query(true);
+  EXPECT_TRUE(s.b.still());
+  for (int i = 3; i < 6; ++i) EXPECT_NEAR(again(i), gamma * (gap - 3e-4 - 4 * 5e-5), 1e-9) << "point " << i;
 }
 
 // With predicted_reference a point is bounded beside its own wanted move, not only the common translation.

@@ -97,7 +97,7 @@ TEST(WEFT_TEST_SUITE, settings_by_name_change_the_solver_settings_and_the_cloth)
   const real compliance = s.constraints.distance.at(0).m.compliance;
   const real bend = s.constraints.bend.at(0).m.compliance;
   io::apply_overrides(s, {{"substeps", "7"}, {"gravity", "0,-1.5,0"}, {"contact_model", "ccd"},
-                          {"pair_refresh", "off"}, {"nearest_margins", "on"}, {"predicted_reference", "on"}, {"layer_shock", "50"}, {"thickness", "0.004"}, {"stretch_stiffness_scale", "4"},
+                          {"pair_refresh", "off"}, {"nearest_margins", "on"}, {"predicted_reference", "on"}, {"layer_shock", "50"}, {"still_tolerance", "0.25"}, {"thickness", "0.004"}, {"stretch_stiffness_scale", "4"},
                           {"bend_stiffness_scale", "0.5"}});
   EXPECT_EQ(s.settings.substeps, 7);
   EXPECT_EQ(s.settings.gravity.y, -1.5);
@@ -106,11 +106,12 @@ TEST(WEFT_TEST_SUITE, settings_by_name_change_the_solver_settings_and_the_cloth)
   EXPECT_TRUE(s.settings.collision.nearest_margins);
   EXPECT_TRUE(s.settings.collision.predicted_reference);
   EXPECT_EQ(s.settings.collision.layer_shock, 50);
+  EXPECT_EQ(s.settings.collision.still_tolerance, 0.25);
   for (real t : s.points.thickness) EXPECT_EQ(t, 0.004);
   EXPECT_EQ(s.constraints.distance.at(0).m.compliance, compliance / 4);
   EXPECT_EQ(s.constraints.bend.at(0).m.compliance, bend / 0.5);
   for (const char* bad : {"substeps=-1", "gravity=1,2", "contact_model=soft", "tethers=0.5", "thickness=-1",
-                          "pair_refresh=maybe", "fps=0", "layer_shock=0.5"})
+                          "pair_refresh=maybe", "fps=0", "layer_shock=0.5", "still_tolerance=-1"})
     EXPECT_THROW(io::check_override(io::parse_override(bad)), InputError) << bad;
   EXPECT_THROW(io::parse_override("substeps"), InputError);
   EXPECT_THROW(io::parse_override("=3"), InputError);
