@@ -280,7 +280,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
           // The last measured pass's self contacts stand (contacts_[0, n) is kept), their closest points and
           // normals measured again where the cloth stands: frozen ones left the resting layer-stack jittering
           // five times as fast (rms 2.1e-3 against 3.9e-4 m/s at --res 6).
-          n += b.still_self_contacts();
+          n += nself_contacts_;
           if (n > 0)
             Kokkos::parallel_for("weft::still_contacts", Kokkos::RangePolicy<Exec>(s.exec, 0, n),
                                  RemeasureSelfContacts<Mem>{contacts_, cloth, ns});
@@ -293,7 +293,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
         if (b.sweeps()) b.add_self_pairs_with_references(s.exec, cloth, pairs_, np, s.w, self_hits_, ns);
         else b.add_pairs(s.exec, cloth, cloth, pairs_, np, b.relative_end(), s.w, self_hits_, ns);
         if (np > 0) n += narrow_.fill(s.exec, cloth, cloth, ns, pairs_, np, self_hits_, contacts_, n);
-        b.measured_self(s.exec, n);
+        nself_contacts_ = n;
+        b.measured_self(s.exec);
       });
     }
     if (colliders) {
@@ -394,6 +395,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   int passes_ = 1, pass_in_substep_ = 0, early_in_substep_ = 0;
   long held_ = 0;  // points the last query's truncation held short of their prediction
   long nself_pairs_ = 0;  // proximity: self pairs of the last full query (in pairs_)
+  long nself_contacts_ = 0;  // proximity: self contacts of the last pass that measured them (contacts_[0, n))
   bool early_next_ = false;  // proximity: wants_pass asked for the next pass
   BoundSettings bound_settings_;
   std::optional<DisplacementBounds<Exec>> bounds_;

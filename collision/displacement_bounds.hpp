@@ -604,13 +604,12 @@ class DisplacementBounds {
                                                            s_.bound_pins, hits, ns});
   }
 
-  // A still pass (prepare() decided): the last measured pass's self contacts stand, and its nearest self
-  // distances, less what the cloth can have closed since, bound the points (docs/collisions.md, "Still
-  // passes"). Where still passes are on, a pass that measured its self pairs records them here: their
-  // distances (the points' nearest so far, before any collider pair), where it stood and its contacts.
+  // A still pass (prepare() decided): the caller keeps the last measured pass's self contacts, and its
+  // nearest self distances, less what the cloth can have closed since, bound the points (docs/collisions.md,
+  // "Still passes"). Where still passes are on, a pass that measured its self pairs records them here: their
+  // distances (the points' nearest so far, before any collider pair) and where it stood.
   bool still() const { return still_; }
-  long still_self_contacts() const { return nself_contacts_; }
-  void measured_self(const Exec& exec, long self_contacts) {
+  void measured_self(const Exec& exec) {
     if (!(s_.still_distance > 0)) return;
     const long n = long(x0_.extent(0));
     if (long(dself_.extent(0)) != n) {
@@ -621,7 +620,6 @@ class DisplacementBounds {
     Kokkos::deep_copy(exec, dself_, dmin_);
     Kokkos::deep_copy(exec, xm_, x0_);
     tm_ = Vec3{0, 0, 0};
-    nself_contacts_ = self_contacts;
     measured_ = true;
   }
 
@@ -728,13 +726,12 @@ class DisplacementBounds {
   Vec3 t_{0, 0, 0}, tq_{0, 0, 0};  // this query's translation; the sum of those since the last full query
   bool resume_ = false, refresh_ = false, queried_ = false;
   bool active_ = true, sweep_ = false;  // references this frame; this query sweeps them
-  // Still passes: the last measured pass's nearest self distances, positions (X0) and self contacts; the
-  // translations since; this pass's R and whether it is still.
+  // Still passes: the last measured pass's nearest self distances and positions (X0); the translations
+  // since; this pass's R and whether it is still.
   View<bounds_detail::Fixed*> dself_;
   View<Vec3*> xm_;
   View<real*> moved_;
   Vec3 tm_{0, 0, 0};
-  long nself_contacts_ = 0;
   real moved_max_ = 0;
   bool measured_ = false, still_ = false;
 };

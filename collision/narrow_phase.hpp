@@ -273,18 +273,18 @@ KOKKOS_INLINE_FUNCTION void finish_contact(Contact& c, const SideMesh<Mem>& S0, 
   }
 }
 
-// Vertex p of side P against face f of side F.
+// Vertex p of side P against the face (a, b, c3) of side F, its corners in the face's order.
 template <class Mem>
-KOKKOS_INLINE_FUNCTION Contact make_vf(const SideMesh<Mem>& P, int p, const SideMesh<Mem>& F, int f, const NarrowSettings& s) {
-  const int a = F.tris(f, 0), b = F.tris(f, 1), c3 = F.tris(f, 2);
+KOKKOS_INLINE_FUNCTION Contact make_vf_at(const SideMesh<Mem>& P, int p, const SideMesh<Mem>& F, int a, int b, int c3,
+                                          const NarrowSettings& s) {
   real u, v, w;
   point_triangle_distance2(P.x(p), F.x(a), F.x(b), F.x(c3), u, v, w);
   Contact c;
   c.kind = kContactVF;
   c.p[0] = P.ref(p); c.p[1] = F.ref(a); c.p[2] = F.ref(b); c.p[3] = F.ref(c3);
   c.b[0] = 1; c.b[1] = -u; c.b[2] = -v; c.b[3] = -w;
-  c.r = P.th(p) + face_th(F, f);
-  Vec3 n = F.face_normal(f);
+  c.r = P.th(p) + max_(F.th(a), max_(F.th(b), F.th(c3)));  // face_th
+  Vec3 n = normalized(cross(F.x(b) - F.x(a), F.x(c3) - F.x(a)));  // face_normal
   if (!F.collider) {  // cloth faces are two-sided: keep the side the point started on
     const Vec3 d0 = P.xo(p) - (u * F.xo(a) + v * F.xo(b) + w * F.xo(c3));
     if (dot(n, d0) < 0) n = -n;
@@ -292,6 +292,12 @@ KOKKOS_INLINE_FUNCTION Contact make_vf(const SideMesh<Mem>& P, int p, const Side
   c.n = n;
   finish_contact(c, P, p, F, a, true, s);
   return c;
+}
+
+// Vertex p of side P against face f of side F.
+template <class Mem>
+KOKKOS_INLINE_FUNCTION Contact make_vf(const SideMesh<Mem>& P, int p, const SideMesh<Mem>& F, int f, const NarrowSettings& s) {
+  return make_vf_at(P, p, F, F.tris(f, 0), F.tris(f, 1), F.tris(f, 2), s);
 }
 
 // The collider edge (e0, e1) of triangle f, edge k: its dihedral normal (mean of the two face normals).
@@ -305,11 +311,11 @@ KOKKOS_INLINE_FUNCTION Vec3 dihedral_normal(const SideMesh<Mem>& C, int f, int k
   return l > 0 ? m / l : n0;
 }
 
-// Edge (a0, a1) of side SA, triangle A, edge ka, against edge (b0, b1) of side SB, triangle B, edge kb.
+// Edge (a0, a1) of side SA against edge (b0, b1) of side SB; `collider_n` the normal where a side is a
+// collider (its edge's dihedral normal, pointing out of it), else the cloth edges' cross product is.
 template <class Mem>
-KOKKOS_INLINE_FUNCTION Contact make_ee(const SideMesh<Mem>& SA, int A, int ka, const SideMesh<Mem>& SB, int B, int kb,
-                                       const NarrowSettings& s) {
-  const int a0 = SA.tris(A, ka), a1 = SA.tris(A, (ka + 1) % 3), b0 = SB.tris(B, kb), b1 = SB.tris(B, (kb + 1) % 3);
+KOKKOS_INLINE_FUNCTION Contact make_ee_at(const SideMesh<Mem>& SA, int a0, int a1, const SideMesh<Mem>& SB, int b0, int b1,
+                                          const NarrowSettings& s, Vec3 collider_n = Vec3{0, 0, 0}) {
   real sa, tb;
   segment_segment_distance2(SA.x(a0), SA.x(a1), SB.x(b0), SB.x(b1), sa, tb);
   Contact c;
@@ -317,12 +323,8 @@ KOKKOS_INLINE_FUNCTION Contact make_ee(const SideMesh<Mem>& SA, int A, int ka, c
   c.p[0] = SA.ref(a0); c.p[1] = SA.ref(a1); c.p[2] = SB.ref(b0); c.p[3] = SB.ref(b1);
   c.b[0] = 1 - sa; c.b[1] = sa; c.b[2] = -(1 - tb); c.b[3] = -tb;
   c.r = max_(SA.th(a0), SA.th(a1)) + max_(SB.th(b0), SB.th(b1));
-  Vec3 n;
-  if (SB.collider) {
-    n = dihedral_normal(SB, B, kb);  // paper 2.2: the collider edge's dihedral normal, pointing out of it
-  } else if (SA.collider) {
-    n = -dihedral_normal(SA, A, ka);
-  } else {
+  Vec3 n = collider_n;
+  if (!SA.collider && !SB.collider) {
     n = normalized(cross(SA.x(a1) - SA.x(a0), SB.x(b1) - SB.x(b0)));
     const Vec3 d0 = ((1 - sa) * SA.xo(a0) + sa * SA.xo(a1)) - ((1 - tb) * SB.xo(b0) + tb * SB.xo(b1));
     if (dot(n, d0) < 0) n = -n;  // sign from the start of the substep
@@ -332,39 +334,28 @@ KOKKOS_INLINE_FUNCTION Contact make_ee(const SideMesh<Mem>& SA, int A, int ka, c
   return c;
 }
 
+// Edge (a0, a1) of side SA, triangle A, edge ka, against edge (b0, b1) of side SB, triangle B, edge kb.
+template <class Mem>
+KOKKOS_INLINE_FUNCTION Contact make_ee(const SideMesh<Mem>& SA, int A, int ka, const SideMesh<Mem>& SB, int B, int kb,
+                                       const NarrowSettings& s) {
+  // paper 2.2: against a collider edge, its dihedral normal, pointing out of it
+  const Vec3 n = SB.collider ? dihedral_normal(SB, B, kb) : SA.collider ? -dihedral_normal(SA, A, ka) : Vec3{0, 0, 0};
+  return make_ee_at(SA, SA.tris(A, ka), SA.tris(A, (ka + 1) % 3), SB, SB.tris(B, kb), SB.tris(B, (kb + 1) % 3), s, n);
+}
+
 }  // namespace narrow_detail
 
-// A self contact's closest points, normal and layer shock measured again where the cloth stands
-// (cloth.x), as make_vf and make_ee would give them there; it keeps its points and separation. Layer shock
-// goes by the sign of each point's weight, so a point whose weight was 0 takes its side again.
+// A self contact made again where the cloth stands (cloth.x, and cloth.xo for the side its normal keeps)
+// from its own points: its closest points, normal and layer shock as the narrow phase would give them there.
 template <class Mem>
 struct RemeasureSelfContacts {
   Kokkos::View<Contact*, Mem> c;
   SideMesh<Mem> cloth;
   NarrowSettings ns;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
-    const auto& x = cloth.x;
-    Contact k = c(i);
-    Vec3 n;
-    if (k.kind == kContactVF) {
-      const Vec3 p = x(k.p[0]), a = x(k.p[1]), b = x(k.p[2]), c3 = x(k.p[3]);
-      real u, v, w;
-      point_triangle_distance2(p, a, b, c3, u, v, w);
-      k.b[1] = -u; k.b[2] = -v; k.b[3] = -w;
-      n = normalized(cross(b - a, c3 - a));
-      if (dot(n, p - (u * a + v * b + w * c3)) < 0) n = -n;
-    } else {
-      const Vec3 a0 = x(k.p[0]), a1 = x(k.p[1]), b0 = x(k.p[2]), b1 = x(k.p[3]);
-      real sa, tb;
-      segment_segment_distance2(a0, a1, b0, b1, sa, tb);
-      k.b[0] = 1 - sa; k.b[1] = sa; k.b[2] = -(1 - tb); k.b[3] = -tb;
-      n = normalized(cross(a1 - a0, b1 - b0));
-      if (dot(n, ((1 - sa) * a0 + sa * a1) - ((1 - tb) * b0 + tb * b1)) < 0) n = -n;
-    }
-    k.n = n;
-    for (int s = 0; s < 4; ++s) k.wscale[s] = 1;
-    narrow_detail::finish_contact(k, cloth, k.p[0], cloth, k.p[k.kind == kContactVF ? 1 : 2], true, ns);
-    c(i) = k;
+    const Contact k = c(i);
+    c(i) = k.kind == kContactVF ? narrow_detail::make_vf_at(cloth, k.p[0], cloth, k.p[1], k.p[2], k.p[3], ns)
+                                : narrow_detail::make_ee_at(cloth, k.p[0], k.p[1], cloth, k.p[2], k.p[3], ns);
   }
 };
 

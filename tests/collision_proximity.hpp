@@ -53,7 +53,7 @@ struct TwoTriangles {
     } else {
       b.add_pairs(Exec(), cloth, cloth, pairs, 1, b.relative_end(), w);
     }
-    if (!b.still()) b.measured_self(Exec(), 0);
+    if (!b.still()) b.measured_self(Exec());
     b.finish(Exec(), w);
     return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.bounds());
   }
