@@ -51,7 +51,11 @@ void print_settings(const SolverSettings& s, bool fem_rows = false) {
             << "  impact zone smoothing " << (c.impact_zone_smoothing ? "on" : "off") << " (epsilon "
             << c.impact_zone_epsilon << ", " << c.impact_zone_sweeps << " sweeps), crossing fail-safe "
             << (c.collision_failsafe ? "on" : "off") << ", contact solver "
-            << contact_solver_name(c.contact_solver) << ", CCD span " << ccd_span_name(c.ccd_span) << ", tethers "
+            << contact_solver_name(c.contact_solver)
+            << (c.contact_solver == ContactSolver::Jacobi || c.contact_model == ContactModel::Proximity
+                    ? (c.merge_contacts ? " (contacts on the same points merged)" : " (every contact a row)")
+                    : "")
+            << ", CCD span " << ccd_span_name(c.ccd_span) << ", tethers "
             << tethers.str() << "\n";
 }
 

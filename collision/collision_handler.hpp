@@ -46,7 +46,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
   using View = Kokkos::View<T, Mem>;
 
   explicit CollisionHandler(const Scene& s)
-      : settings_(s.settings.collision), cloth_bvh_(Exec()), collider_bvh_(Exec()) {
+      : settings_(s.settings.collision), cloth_bvh_(Exec()), collider_bvh_(Exec()),
+        jacobi_run_(s.settings.collision.merge_contacts) {
     ns_.static_friction = settings_.static_friction;
     ns_.dynamic_friction = settings_.dynamic_friction;
     ns_.layer_shock = settings_.layer_shock;
@@ -156,6 +157,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     if (settings_.self_collision) n += narrow(cloth, cloth, /*self*/ true, n);
     if (collider_boxes_.extent(0) > 0) n += narrow(cloth, collider, false, n);
     ncontacts_ = n;
+    jacobi_run_.contacts_changed();
     if (per_pass_ && ++pass_in_substep_ < passes_) {
       if (x_pass_.extent(0) != s.x.extent(0))
         x_pass_ = View<Vec3*>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::x_pass"), s.x.extent(0));
@@ -327,6 +329,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
       stats_.points_cut_back += held_;
     });
     ncontacts_ = n;
+    jacobi_run_.contacts_changed();
     offsets_ = {0};
     stats_.contacts = n;
     if (!refresh) ++stats_.queries;

@@ -45,8 +45,7 @@ KOKKOS_INLINE_FUNCTION real contact_value(const Contact& c, const XView& x, cons
 // of every correction, and the heavy layer pressed it into the sphere below and stretched it (the stability
 // case mass-ratio-1000: max strain 0.63, 0.26 at rest, against 0.12 and 0.07; docs/collisions.md).
 template <class WView>
-KOKKOS_INLINE_FUNCTION bool contact_normal_step(const Contact& c, real C, const WView& w, real (&wk)[4], real& denom,
-                                                real& dl) {
+KOKKOS_INLINE_FUNCTION bool contact_weights(const Contact& c, const WView& w, real (&wk)[4], real& denom) {
   real carried = 0;  // the smallest moving weight on the upper side
   for (int k = 0; k < 4; ++k) {
     wk[k] = c.p[k] >= 0 ? w(c.p[k]) : 0.0;
@@ -57,7 +56,13 @@ KOKKOS_INLINE_FUNCTION bool contact_normal_step(const Contact& c, real C, const 
     if (c.wscale[k] > 1) wk[k] = (carried > 0 ? min_(wk[k], carried) : wk[k]) / c.wscale[k];
     denom += wk[k] * c.b[k] * c.b[k];
   }
-  if (!(denom > 0)) return false;
+  return denom > 0;
+}
+
+template <class WView>
+KOKKOS_INLINE_FUNCTION bool contact_normal_step(const Contact& c, real C, const WView& w, real (&wk)[4], real& denom,
+                                                real& dl) {
+  if (!contact_weights(c, w, wk, denom)) return false;
   dl = -C / denom;
   return true;
 }
@@ -65,13 +70,16 @@ KOKKOS_INLINE_FUNCTION bool contact_normal_step(const Contact& c, real C, const 
 // Position-based friction: the correction (to be weighted by wk b / denom per point) that removes the
 // tangential part of the contact's relative displacement d over the substep while it is below mu_s times
 // the normal correction dn, and reduces it by mu_d times dn otherwise; false when there is none.
-KOKKOS_INLINE_FUNCTION bool friction_correction(const Contact& c, Vec3 d, real dn, Vec3& corr) {
-  const Vec3 dt = d - dot(d, c.n) * c.n;
+KOKKOS_INLINE_FUNCTION bool friction_correction(Vec3 n, real mu_s, real mu_d, Vec3 d, real dn, Vec3& corr) {
+  const Vec3 dt = d - dot(d, n) * n;
   const real len = norm(dt);
   if (!(len > 0)) return false;
-  const real keep = len < c.mu_s * dn ? 0.0 : max_(real(0), 1 - c.mu_d * dn / len);
+  const real keep = len < mu_s * dn ? 0.0 : max_(real(0), 1 - mu_d * dn / len);
   corr = (keep - 1) * dt;  // removes (1 - keep) of the tangential motion
   return true;
+}
+KOKKOS_INLINE_FUNCTION bool friction_correction(const Contact& c, Vec3 d, real dn, Vec3& corr) {
+  return friction_correction(c.n, c.mu_s, c.mu_d, d, dn, corr);
 }
 
 // Relative displacement of the contact's two sides since the start of the substep.

@@ -45,16 +45,31 @@ struct RadixScatter {
   }
 };
 
+// Working memory of a sort, kept by callers that sort every pass so that no pass allocates.
+template <class Mem>
+struct RadixScratch {
+  Kokkos::View<uint64_t*, Mem> keys{"weft::sort_keys", 0};
+  Kokkos::View<uint32_t*, Mem> vals{"weft::sort_vals", 0};
+  Kokkos::View<long*, Mem> hist{"weft::sort_hist", 0};
+};
+
 // Sorts keys (and values alongside) ascending; only the low key_bits bits of each key are compared.
 template <class Exec, class KeyView, class ValView>
-void radix_sort_pairs(const Exec& exec, const KeyView& keys, const ValView& vals, int key_bits = 64) {
+void radix_sort_pairs(const Exec& exec, const KeyView& keys, const ValView& vals, int key_bits,
+                      RadixScratch<typename Exec::memory_space>& scratch) {
   using Mem = typename Exec::memory_space;
   const long n = static_cast<long>(keys.extent(0));
   if (n < 2) return;
   const long nb = (n + kSortBlock - 1) / kSortBlock;
-  Kokkos::View<uint64_t*, Mem> k2(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::sort_keys"), n);
-  Kokkos::View<uint32_t*, Mem> v2(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::sort_vals"), n);
-  Kokkos::View<long*, Mem> hist(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::sort_hist"), 256 * nb);
+  if (long(scratch.keys.extent(0)) < n) {
+    scratch.keys = Kokkos::View<uint64_t*, Mem>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::sort_keys"), n);
+    scratch.vals = Kokkos::View<uint32_t*, Mem>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::sort_vals"), n);
+  }
+  if (long(scratch.hist.extent(0)) < 256 * nb)
+    scratch.hist = Kokkos::View<long*, Mem>(Kokkos::view_alloc(Kokkos::WithoutInitializing, "weft::sort_hist"), 256 * nb);
+  const Kokkos::View<uint64_t*, Mem> k2 = Kokkos::subview(scratch.keys, std::make_pair(0L, n));
+  const Kokkos::View<uint32_t*, Mem> v2 = Kokkos::subview(scratch.vals, std::make_pair(0L, n));
+  const Kokkos::View<long*, Mem> hist = Kokkos::subview(scratch.hist, std::make_pair(0L, 256 * nb));
   Kokkos::View<uint64_t*, Mem> ksrc = keys, kdst = k2;
   Kokkos::View<uint32_t*, Mem> vsrc = vals, vdst = v2;
   int passes = 0;
@@ -71,6 +86,12 @@ void radix_sort_pairs(const Exec& exec, const KeyView& keys, const ValView& vals
     Kokkos::deep_copy(exec, keys, ksrc);
     Kokkos::deep_copy(exec, vals, vsrc);
   }
+}
+
+template <class Exec, class KeyView, class ValView>
+void radix_sort_pairs(const Exec& exec, const KeyView& keys, const ValView& vals, int key_bits = 64) {
+  RadixScratch<typename Exec::memory_space> scratch;
+  radix_sort_pairs(exec, keys, vals, key_bits, scratch);
 }
 
 }  // namespace weft

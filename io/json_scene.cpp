@@ -153,7 +153,7 @@ std::string resolve(const std::string& json_path, const std::string& file) {
 void read_settings(const Node& n, Scene& s) {
   n.object({"fps", "frames", "substeps", "iterations", "collision_passes", "smoothing", "gravity", "wind", "damping",
             "impact_zone_smoothing", "collision_failsafe", "contact_solver", "ccd_span", "tethers", "collisions",
-            "contact_model", "early_pass_fraction", "max_early_passes", "pair_refresh", "nearest_margins",
+            "contact_model", "early_pass_fraction", "max_early_passes", "pair_refresh", "merge_contacts", "nearest_margins",
             "predicted_reference", "layer_shock", "still_tolerance", "chebyshev_rho",
             "chebyshev_delay"});
   SolverSettings& st = s.settings;
@@ -191,6 +191,7 @@ void read_settings(const Node& n, Scene& s) {
       n.number("early_pass_fraction", st.collision.early_pass_fraction, Range::NonNegative);
   st.collision.max_early_passes = n.integer("max_early_passes", st.collision.max_early_passes, 0);
   if (n.has("pair_refresh")) st.collision.pair_refresh = n["pair_refresh"].boolean();
+  if (n.has("merge_contacts")) st.collision.merge_contacts = n["merge_contacts"].boolean();
   if (n.has("nearest_margins")) st.collision.nearest_margins = n["nearest_margins"].boolean();
   if (n.has("predicted_reference")) st.collision.predicted_reference = n["predicted_reference"].boolean();
   st.collision.still_tolerance = n.number("still_tolerance", st.collision.still_tolerance, Range::NonNegative);

@@ -11,7 +11,7 @@ namespace {
 // A field added to these structs must be added to the file (and the format version raised): the sizes are
 // checked so that the scene file does not silently drop it (a field that fits in padding escapes the check).
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is stored as 3 doubles");
-static_assert(sizeof(SolverSettings) == 216 && sizeof(CollisionSettings) == 96,
+static_assert(sizeof(SolverSettings) == 224 && sizeof(CollisionSettings) == 104,
               "SolverSettings or CollisionSettings changed: update the settings tables below");
 static_assert(sizeof(XpbdMaterial) == 24 && sizeof(DistanceConstraint) == 40 && sizeof(BendConstraint) == 48 &&
                   sizeof(TriarapConstraint) == 88 && sizeof(PinConstraint) == 72 && sizeof(AttachConstraint) == 64 &&
@@ -69,6 +69,7 @@ const Setting<bool> kBoolSettings[] = {
     collision("pair_refresh", &CollisionSettings::pair_refresh),
     collision("nearest_margins", &CollisionSettings::nearest_margins),
     collision("predicted_reference", &CollisionSettings::predicted_reference),
+    collision("merge_contacts", &CollisionSettings::merge_contacts),
     own("profile", &SolverSettings::profile),
 };
 const Setting<Vec3> kVecSettings[] = {
@@ -405,7 +406,7 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
     const char* name = m.name;
     // Added after the first files of this format version were written: absent means the default.
     const bool optional = std::strcmp(name, "collision_failsafe") == 0 || std::strcmp(name, "nearest_margins") == 0 ||
-                          std::strcmp(name, "predicted_reference") == 0;
+                          std::strcmp(name, "predicted_reference") == 0 || std::strcmp(name, "merge_contacts") == 0;
     // Absent in files written before it existed, whose passes all queried afresh.
     if (std::strcmp(name, "pair_refresh") == 0 && !h5::has_attribute(f, group, name)) {
       field(s, m) = false;

@@ -119,6 +119,8 @@ const std::vector<Entry>& entries() {
        [](Scene& s, const std::string& v) { s.settings.collision.contact_model = *parse_contact_model(one_of(v, {"proximity", "ccd"})); }},
       {"pair_refresh", "on | off: proximity passes may keep the last full query's self pairs",
        [](Scene& s, const std::string& v) { s.settings.collision.pair_refresh = to_bool(v); }},
+      {"merge_contacts", "on | off: Jacobi contacts on the same two or three points project as one row counted as many",
+       [](Scene& s, const std::string& v) { s.settings.collision.merge_contacts = to_bool(v); }},
       {"nearest_margins", "on | off: proximity query margins grow no further than the nearest features at the last query",
        [](Scene& s, const std::string& v) { s.settings.collision.nearest_margins = to_bool(v); }},
       {"predicted_reference", "on | off: proximity bounds beside each point's own wanted move, not only the common translation",

@@ -56,6 +56,7 @@ struct CollisionSettings {
                                          // more than this times the thinnest cloth thickness since (0: off)
   int max_early_passes = 4;              // proximity: early passes per substep at most
   bool pair_refresh = true;              // proximity: a pass may keep the last full query's self pairs
+  bool merge_contacts = false;           // Jacobi contacts on the same two or three points project as one row
   bool nearest_margins = false;          // proximity: query margins grow no further than the nearest features
   bool predicted_reference = false;      // proximity: bounds beside each point's own wanted move (docs/collisions.md)
   bool collision_failsafe = true;        // ccd model: move back points whose motion would cross cloth (collision/crossing_failsafe.hpp)

@@ -1,8 +1,11 @@
 // Proximity contacts with per-point displacement bounds (the default contact model): no move exceeds its
 // bound, nothing crosses in scenes built to tempt a crossing, and pins follow their animation exactly.
+#include "collision/contact_jacobi.hpp"
 #include "collision/displacement_bounds.hpp"
 #include "io/builtin_scenes.hpp"
 #include "tests/solver_scene_fixture.hpp"
+
+#include <array>
 
 namespace {
 
@@ -63,6 +66,52 @@ struct TwoTriangles {
 
 // Two triangles 1 cm apart, one above the other. Every point's bound is gamma times that gap; moves of
 // 5 cm towards each other are cut back to the bound, and the gap keeps at least (1 - 2 gamma) of itself.
+// Contacts on the same two points project as one row counted as many: one pair seen from either side and
+// as an edge-edge pair gives the same bits merged or not, in fewer rows; a contact on four points stays
+// a row of its own.
+TEST(WEFT_TEST_SUITE, jacobi_contacts_on_the_same_points_project_as_one_row) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  using Mem = Exec::memory_space;
+  const std::vector<Vec3> xh{{0, 0.005, 0}, {0, 0, 0}, {0.1, 0.004, 0}, {0.1, 0.004, 0.01}};
+  std::vector<Vec3> xsh = xh;
+  xsh[0].x -= 0.002;  // a tangential move for friction to take back
+  auto contact = [](std::array<int, 4> p, std::array<real, 4> b, Vec3 n) {
+    weft::Contact c;
+    for (int k = 0; k < 4; ++k) { c.p[k] = p[k]; c.b[k] = b[k]; }
+    c.n = n;
+    c.r = 0.01;
+    c.mu_s = c.mu_d = 0.5;
+    return c;
+  };
+  const std::vector<weft::Contact> ch{
+      contact({0, 1, 2, 3}, {1, -1, 0, 0}, {0, 1, 0}),                 // 0 on a face corner at 1
+      contact({2, 3, 0, 1}, {0.5, 0.5, -0.5, -0.5}, {0, 1, 0}),        // four points
+      contact({1, 0, 2, 3}, {1, -1, 0, 0}, {0, -1, 0}),                // 1 on a face corner at 0
+      contact({0, 2, 1, 3}, {1, 0, -1, 0}, {0, 1, 0})};                // edges meeting at 0 and 1
+  const auto c = weft::test::to_device<Exec>(ch, "contacts");
+  auto run = [&](bool merge, long& rows) {
+    auto x = weft::test::to_device<Exec>(xh, "x");
+    auto xs = weft::test::to_device<Exec>(xsh, "xs");
+    auto w = weft::test::to_device<Exec>(std::vector<real>(4, 1.0), "w");
+    Kokkos::View<Vec3*, Mem> cx("cx", 0), cxs("cxs", 0);
+    weft::JacobiContacts<Exec> j(merge);
+    j.contacts_changed();
+    for (int it = 0; it < 3; ++it) j.project(Exec(), c, long(ch.size()), x, xs, w, cx, cxs);
+    rows = j.rows();
+    return weft::test::to_host(x);
+  };
+  long merged_rows = 0, rows = 0;
+  const auto merged = run(true, merged_rows), each = run(false, rows);
+  EXPECT_EQ(merged_rows, 2);
+  EXPECT_EQ(rows, 4);
+  EXPECT_GT(merged[0].y, xh[0].y);  // pushed apart
+  for (int p = 0; p < 4; ++p) {
+    EXPECT_EQ(weft::test::bits(merged[p].x), weft::test::bits(each[p].x)) << p;
+    EXPECT_EQ(weft::test::bits(merged[p].y), weft::test::bits(each[p].y)) << p;
+    EXPECT_EQ(weft::test::bits(merged[p].z), weft::test::bits(each[p].z)) << p;
+  }
+}
+
 TEST(WEFT_TEST_SUITE, proximity_bounds_cut_every_move_back_and_keep_pairs_apart) {
   using Exec = WEFT_TEST_EXECSPACE;
   // Query margins of 2 cm: more than the gap, so the gap decides.

@@ -338,6 +338,10 @@ TEST(WEFT_TEST_SUITE, collision_scene_hash_is_pinned) {
   uint64_t h = 0;
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "6799035b60e8e420");  // proximity contacts, the default (passes keep pairs)
+  s.settings.collision.merge_contacts = true;  // contacts on the same points as one row
+  weft::test::run_frames<Exec>(s, 12, &h);
+  EXPECT_EQ(weft::hash_hex(h), "8e0966c2b2d47a35");
+  s.settings.collision.merge_contacts = false;
   s.settings.collision.pair_refresh = false;                   // every pass queries afresh
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "8cd507af6001be3b");

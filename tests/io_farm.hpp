@@ -97,12 +97,13 @@ TEST(WEFT_TEST_SUITE, settings_by_name_change_the_solver_settings_and_the_cloth)
   const real compliance = s.constraints.distance.at(0).m.compliance;
   const real bend = s.constraints.bend.at(0).m.compliance;
   io::apply_overrides(s, {{"substeps", "7"}, {"gravity", "0,-1.5,0"}, {"contact_model", "ccd"},
-                          {"pair_refresh", "off"}, {"nearest_margins", "on"}, {"predicted_reference", "on"}, {"layer_shock", "50"}, {"still_tolerance", "0.25"}, {"thickness", "0.004"}, {"stretch_stiffness_scale", "4"},
+                          {"pair_refresh", "off"}, {"merge_contacts", "off"}, {"nearest_margins", "on"}, {"predicted_reference", "on"}, {"layer_shock", "50"}, {"still_tolerance", "0.25"}, {"thickness", "0.004"}, {"stretch_stiffness_scale", "4"},
                           {"bend_stiffness_scale", "0.5"}});
   EXPECT_EQ(s.settings.substeps, 7);
   EXPECT_EQ(s.settings.gravity.y, -1.5);
   EXPECT_EQ(s.settings.collision.contact_model, ContactModel::Ccd);
   EXPECT_FALSE(s.settings.collision.pair_refresh);
+  EXPECT_FALSE(s.settings.collision.merge_contacts);
   EXPECT_TRUE(s.settings.collision.nearest_margins);
   EXPECT_TRUE(s.settings.collision.predicted_reference);
   EXPECT_EQ(s.settings.collision.layer_shock, 50);

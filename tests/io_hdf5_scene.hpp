@@ -63,6 +63,7 @@ Scene every_kind_scene() {
   st.collision.impact_zone_epsilon = 0.2;
   st.collision.impact_zone_sweeps = 3;
   st.collision.nearest_margins = true;
+  st.collision.merge_contacts = false;
   st.collision.predicted_reference = true;
   st.collision.contact_solver = ContactSolver::Jacobi;
   st.collision.ccd_span = CollisionSettings{}.ccd_span == CcdSpan::Pass ? CcdSpan::Substep : CcdSpan::Pass;

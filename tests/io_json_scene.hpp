@@ -44,7 +44,7 @@ const char* kScene = R"({
                "smoothing": 2, "gravity": [0, -10, 0], "wind": [1, 0, 0], "damping": 0.5,
                "impact_zone_smoothing": false, "contact_solver": "jacobi", "ccd_span": "substep",
                "tethers": 1.1, "contact_model": "ccd", "early_pass_fraction": 0.05, "max_early_passes": 2,
-               "pair_refresh": false, "nearest_margins": true, "predicted_reference": true, "layer_shock": 10,
+               "pair_refresh": false, "merge_contacts": false, "nearest_margins": true, "predicted_reference": true, "layer_shock": 10,
                "still_tolerance": 0.3},
   "cloth": [
     {"obj": "flag.obj", "material": {"density": 0.2, "thickness": 0.003}, "pins": [{"points": [0, 3]}]},
@@ -113,6 +113,7 @@ TEST(WEFT_TEST_SUITE, io_json_scene_gives_the_expected_scene) {
   EXPECT_EQ(st.collision.early_pass_fraction, 0.05);
   EXPECT_EQ(st.collision.max_early_passes, 2);
   EXPECT_FALSE(st.collision.pair_refresh);
+  EXPECT_FALSE(st.collision.merge_contacts);
   EXPECT_TRUE(st.collision.nearest_margins);
   EXPECT_TRUE(st.collision.predicted_reference);
   EXPECT_EQ(st.collision.layer_shock, 10);
