@@ -38,19 +38,26 @@ KOKKOS_INLINE_FUNCTION real from_fixed(Fixed f) { return real((long long)(f)); }
 
 // A contact as the iterations read it, built once per collision pass: the points' weights, the normal,
 // the barycentrics and the layer shock stay fixed while the pass's contacts live, so each point's share
-// of the multiplier, f = w b / denom, is taken once rather than at every iteration.
+// of the multiplier, f = w b / denom, is taken once rather than at every iteration. Passes run within a
+// substep (its first at its start), so the contact's point at the substep's start, sum b x_start, is too:
+// friction reads no start positions.
 struct JacobiRow {
   int p[4];
   real b[4];
   real f[4];  // 0 where the point does not move (collider vertex, pinned, b = 0)
   Vec3 n;
+  Vec3 start;  // sum b x_start
   real r, mu_s, mu_d;
   int count;  // the contacts this row stands for
 };
 
-template <class WView>
-KOKKOS_INLINE_FUNCTION JacobiRow row_of(const Contact& ci, const WView& w, int count) {
+template <class WView, class XView, class CView>
+KOKKOS_INLINE_FUNCTION JacobiRow row_of(const Contact& ci, const WView& w, const XView& xs, const CView& cxs,
+                                        int count) {
   JacobiRow row;
+  row.start = Vec3{0, 0, 0};
+  for (int k = 0; k < 4; ++k)
+    if (ci.b[k] != 0) row.start += ci.b[k] * contact_point_pos(ci.p[k], xs, cxs);
   real wk[4], denom;
   const bool moves = contact_weights(ci, w, wk, denom);
   for (int k = 0; k < 4; ++k) {
@@ -157,13 +164,14 @@ struct MergeRows {
   Kokkos::View<const uint32_t*, Mem> order;
   Kokkos::View<const long*, Mem> first;
   Kokkos::View<real*, Mem> w;
+  Kokkos::View<Vec3*, Mem> xs, cxs;
   Kokkos::View<JacobiRow*, Mem> rows;
   long nrows, n;
   KOKKOS_INLINE_FUNCTION void operator()(long g) const {
     const long lo = first(g), hi = g + 1 < nrows ? first(g + 1) : n;
     const Contact c0 = c(order(lo));
     if (hi - lo == 1) {
-      rows(g) = row_of(c0, w, 1);
+      rows(g) = row_of(c0, w, xs, cxs, 1);
       return;
     }
     const ContactPoints e0 = contact_points(c0);
@@ -184,7 +192,7 @@ struct MergeRows {
     for (int k = 0; k < e0.size; ++k) m.b[k] /= count;
     const real len = norm(nsum);
     m.n = len > 0 ? nsum / len : e0.sign * c0.n;
-    rows(g) = row_of(m, w, int(hi - lo));
+    rows(g) = row_of(m, w, xs, cxs, int(hi - lo));
   }
 };
 
@@ -192,16 +200,17 @@ template <class Mem>
 struct PrepareRows {
   Kokkos::View<const Contact*, Mem> c;
   Kokkos::View<real*, Mem> w;
+  Kokkos::View<Vec3*, Mem> xs, cxs;
   Kokkos::View<JacobiRow*, Mem> rows;
-  KOKKOS_INLINE_FUNCTION void operator()(long i) const { rows(i) = row_of(c(i), w, 1); }
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const { rows(i) = row_of(c(i), w, xs, cxs, 1); }
 };
 
 // Per row: its corrections, added to its points' sums; acc(p, 3) counts the contributions.
 template <class Mem>
 struct ContactDeltas {
   Kokkos::View<const JacobiRow*, Mem> rows;
-  Kokkos::View<Vec3*, Mem> x, xs;
-  Kokkos::View<Vec3*, Mem> cx, cxs;
+  Kokkos::View<Vec3*, Mem> x;
+  Kokkos::View<Vec3*, Mem> cx;
   Kokkos::View<Fixed* [4], Mem> acc;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const JacobiRow& c = rows(i);
@@ -217,10 +226,8 @@ struct ContactDeltas {
     // Friction from the positions before the normal step: that step moves the sides along n only, so the
     // tangential displacement is the one Gauss-Seidel sees after it.
     if (c.mu_s > 0 || c.mu_d > 0) {
-      Vec3 d{}, corr;
-      for (int k = 0; k < 4; ++k)
-        if (c.b[k] != 0) d += c.b[k] * (xk[k] - contact_point_pos(c.p[k], xs, cxs));
-      if (friction_correction(c.n, c.mu_s, c.mu_d, d, -C, corr)) v += corr;
+      Vec3 corr;
+      if (friction_correction(c.n, c.mu_s, c.mu_d, sum - c.start, -C, corr)) v += corr;
     }
     for (int k = 0; k < 4; ++k) {
       if (c.f[k] == 0) continue;
@@ -271,13 +278,13 @@ class JacobiContacts {
     using namespace jacobi_detail;
     if (n == 0) return;
     if (stale_) {
-      build_rows(exec, c, n, w, long(x.extent(0)), long(cx.extent(0)));
+      build_rows(exec, c, n, w, xs, cxs, long(x.extent(0)), long(cx.extent(0)));
       stale_ = false;
     }
     const long points = long(x.extent(0));
     if (long(acc_.extent(0)) != points) acc_ = Kokkos::View<Fixed* [4], Mem>("weft::contact_sums", points);
     Kokkos::parallel_for("weft::contact_deltas", Kokkos::RangePolicy<Exec>(exec, 0, nrows_),
-                         ContactDeltas<Mem>{rows_, x, xs, cx, cxs, acc_});
+                         ContactDeltas<Mem>{rows_, x, cx, acc_});
     Kokkos::parallel_for("weft::contact_apply", Kokkos::RangePolicy<Exec>(exec, 0, points), ApplyDeltas<Mem>{x, acc_});
   }
 
@@ -289,13 +296,14 @@ class JacobiContacts {
   }
 
   void build_rows(const Exec& exec, const Kokkos::View<Contact*, Mem>& c, long n, const Kokkos::View<real*, Mem>& w,
-                  long points, long collider_points) {
+                  const Kokkos::View<Vec3*, Mem>& xs, const Kokkos::View<Vec3*, Mem>& cxs, long points,
+                  long collider_points) {
     using namespace jacobi_detail;
     grow(rows_, n, "weft::contact_rows");
     int bits = 1;
     while ((long(1) << bits) <= points + collider_points) ++bits;  // and one value more: a pair's third point
     if (!merge_ || 3 * bits > 63) {
-      Kokkos::parallel_for("weft::contact_rows", Kokkos::RangePolicy<Exec>(exec, 0, n), PrepareRows<Mem>{c, w, rows_});
+      Kokkos::parallel_for("weft::contact_rows", Kokkos::RangePolicy<Exec>(exec, 0, n), PrepareRows<Mem>{c, w, xs, cxs, rows_});
       nrows_ = n;
       return;
     }
@@ -315,7 +323,7 @@ class JacobiContacts {
     nrows_ = long(exclusive_scan(exec, start, start));
     Kokkos::parallel_for("weft::contact_row_first", Kokkos::RangePolicy<Exec>(exec, 0, n), RowFirst<Mem>{keys_, start_, first_});
     Kokkos::parallel_for("weft::contact_merge", Kokkos::RangePolicy<Exec>(exec, 0, nrows_),
-                         MergeRows<Mem>{c, signed_, order_, first_, w, rows_, nrows_, n});
+                         MergeRows<Mem>{c, signed_, order_, first_, w, xs, cxs, rows_, nrows_, n});
   }
 
   bool merge_;
