@@ -27,7 +27,11 @@ namespace jacobi_detail {
 using Fixed = unsigned long long;  // two's complement sums of signed fixed-point values
 static_assert(std::is_integral_v<Fixed>, "contact sums are integers: atomics add them in any order to the same bits");
 constexpr real kFixedScale = 1099511627776.0;  // 2^40: resolution 9e-13 m
-constexpr real kFixedLimit = 72057594037927936.0;  // 2^56: 65 km, and 128 of them sum without overflow
+// A point's x sum carries its count of contributions in its low kCountBits: one atomic fewer per point of a
+// contact. So a sum holds 2^(63 - kCountBits) units: 128 corrections of up to 2^42 (4 m), and up to 16,383
+// contributions to one point in one iteration (a point of the 50-layer drop has about a hundred).
+constexpr int kCountBits = 14;
+constexpr real kFixedLimit = 4398046511104.0;  // 2^42
 
 KOKKOS_INLINE_FUNCTION Fixed to_fixed(real v) {
   const real s = v * kFixedScale;
@@ -205,13 +209,13 @@ struct PrepareRows {
   KOKKOS_INLINE_FUNCTION void operator()(long i) const { rows(i) = row_of(c(i), w, xs, cxs, 1); }
 };
 
-// Per row: its corrections, added to its points' sums; acc(p, 3) counts the contributions.
+// Per row: its corrections, added to its points' sums; acc(p, 0) counts the contributions in its low bits.
 template <class Mem>
 struct ContactDeltas {
   Kokkos::View<const JacobiRow*, Mem> rows;
   Kokkos::View<Vec3*, Mem> x;
   Kokkos::View<Vec3*, Mem> cx;
-  Kokkos::View<Fixed* [4], Mem> acc;
+  Kokkos::View<Fixed* [3], Mem> acc;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const JacobiRow& c = rows(i);
     Vec3 xk[4], sum{};
@@ -234,10 +238,9 @@ struct ContactDeltas {
       const Vec3 dk = c.f[k] * v;
       const int p = c.p[k];
       const Fixed m = Fixed(c.count);  // the row's contacts, each the same correction
-      Kokkos::atomic_add(&acc(p, 0), to_fixed(dk.x) * m);
+      Kokkos::atomic_add(&acc(p, 0), ((to_fixed(dk.x) * m) << kCountBits) + m);
       Kokkos::atomic_add(&acc(p, 1), to_fixed(dk.y) * m);
       Kokkos::atomic_add(&acc(p, 2), to_fixed(dk.z) * m);
-      Kokkos::atomic_add(&acc(p, 3), m);
     }
   }
 };
@@ -246,13 +249,15 @@ struct ContactDeltas {
 template <class Mem>
 struct ApplyDeltas {
   Kokkos::View<Vec3*, Mem> x;
-  Kokkos::View<Fixed* [4], Mem> acc;
+  Kokkos::View<Fixed* [3], Mem> acc;
   KOKKOS_INLINE_FUNCTION void operator()(long p) const {
-    const Fixed n = acc(p, 3);
+    const Fixed sx = acc(p, 0);
+    const Fixed n = sx & ((Fixed(1) << kCountBits) - 1);
     if (n == 0) return;
     const real s = kFixedScale * real(n);
-    x(p) += Vec3{from_fixed(acc(p, 0)) / s, from_fixed(acc(p, 1)) / s, from_fixed(acc(p, 2)) / s};
-    for (int k = 0; k < 4; ++k) acc(p, k) = 0;
+    const real vx = real((long long)(sx - n) >> kCountBits);  // arithmetic shift: the sum's sign stays
+    x(p) += Vec3{vx / s, from_fixed(acc(p, 1)) / s, from_fixed(acc(p, 2)) / s};
+    for (int k = 0; k < 3; ++k) acc(p, k) = 0;
   }
 };
 
@@ -282,7 +287,7 @@ class JacobiContacts {
       stale_ = false;
     }
     const long points = long(x.extent(0));
-    if (long(acc_.extent(0)) != points) acc_ = Kokkos::View<Fixed* [4], Mem>("weft::contact_sums", points);
+    if (long(acc_.extent(0)) != points) acc_ = Kokkos::View<Fixed* [3], Mem>("weft::contact_sums", points);
     Kokkos::parallel_for("weft::contact_deltas", Kokkos::RangePolicy<Exec>(exec, 0, nrows_),
                          ContactDeltas<Mem>{rows_, x, cx, acc_});
     Kokkos::parallel_for("weft::contact_apply", Kokkos::RangePolicy<Exec>(exec, 0, points), ApplyDeltas<Mem>{x, acc_});
@@ -335,7 +340,7 @@ class JacobiContacts {
   Kokkos::View<long*, Mem> start_{"weft::contact_row_start", 0}, first_{"weft::contact_row_first", 0};
   Kokkos::View<jacobi_detail::SignedContact*, Mem> signed_{"weft::contact_signed", 0};
   RadixScratch<Mem> sort_scratch_;
-  Kokkos::View<jacobi_detail::Fixed* [4], Mem> acc_{"weft::contact_sums", 0};  // zero between iterations
+  Kokkos::View<jacobi_detail::Fixed* [3], Mem> acc_{"weft::contact_sums", 0};  // zero between iterations
 };
 
 }  // namespace weft
