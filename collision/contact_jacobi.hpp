@@ -251,13 +251,14 @@ struct ApplyDeltas {
   Kokkos::View<Vec3*, Mem> x;
   Kokkos::View<Fixed* [3], Mem> acc;
   KOKKOS_INLINE_FUNCTION void operator()(long p) const {
-    const Fixed sx = acc(p, 0);
+    const Fixed sx = acc(p, 0), sy = acc(p, 1), sz = acc(p, 2);
+    if ((sx | sy | sz) == 0) return;
+    for (int k = 0; k < 3; ++k) acc(p, k) = 0;  // even past the count's limit, nothing carries over
     const Fixed n = sx & ((Fixed(1) << kCountBits) - 1);
     if (n == 0) return;
     const real s = kFixedScale * real(n);
     const real vx = real((long long)(sx - n) >> kCountBits);  // arithmetic shift: the sum's sign stays
-    x(p) += Vec3{vx / s, from_fixed(acc(p, 1)) / s, from_fixed(acc(p, 2)) / s};
-    for (int k = 0; k < 3; ++k) acc(p, k) = 0;
+    x(p) += Vec3{vx / s, from_fixed(sy) / s, from_fixed(sz) / s};
   }
 };
 
