@@ -106,7 +106,7 @@ print(';'.join([p['purelib'], p['platlib'], site.getusersitepackages()]))"
 
   add_library(weft_usd MODULE ${PROJECT_SOURCE_DIR}/io/usd/weft_usd.cpp)
   target_include_directories(weft_usd PRIVATE ${PROJECT_SOURCE_DIR})
-  target_link_libraries(weft_usd PRIVATE pxr::sdf Python::Python)
+  target_link_libraries(weft_usd PRIVATE pxr::sdf pxr::work Python::Python)
   target_compile_definitions(weft_usd PRIVATE WEFT_USD_PLUGINFO="${_plugins}")
   target_compile_options(weft_usd PRIVATE -Wno-deprecated)  # pxr/tf/hashset.h includes <ext/hash_set>
   # The wheels' libraries carry no run path to one another (pip's layout puts each in its own lib/): an

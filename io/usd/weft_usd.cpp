@@ -16,6 +16,7 @@
 #include <pxr/vt/array.h>
 #include <pxr/vt/dictionary.h>
 #include <pxr/vt/value.h>
+#include <pxr/work/threadLimits.h>
 
 #include <algorithm>
 #include <exception>
@@ -36,8 +37,12 @@ using weft::io::usd::MeshCache;
 // The wheels' plugInfo.json files name their libraries at a layout they do not install, and Plug (which Sdf
 // asks for file formats and Ar for its resolver) finds none on its own: register the copies that the build
 // wrote with the libraries' real paths. Once per process; a plug-in registered again is ignored.
+// Work runs on one thread: with more, Sdf hands a dropped layer's data to a detached TBB task whose thread
+// can still be inside TBB while weft exits and TBB's statics go (a crash after the file is written, about one
+// export in eight). One mesh layer gains nothing from threads.
 void register_plugins() {
   static const bool done = [] {
+    WorkSetConcurrencyLimit(1);
     PlugRegistry::GetInstance().RegisterPlugins(std::string(WEFT_USD_PLUGINFO) + "/*/resources/");
     return true;
   }();
