@@ -1,6 +1,7 @@
 // `weft info`: versions, backends, devices and the named schedules (scene/schedules.hpp); `weft info FILE`:
 // what a scene or cache file holds.
 #include "apps/cli.hpp"
+#include "constraints/build_stretch_limits.hpp"
 #include "core/hash.hpp"
 #include "core/kokkos_compat.hpp"
 #include "io/cache_file.hpp"
@@ -20,6 +21,13 @@ std::string vec_string(Vec3 v) {
   std::ostringstream s;
   s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
   return s.str();
+}
+
+std::string stretch_limits_name(int levels) {
+  if (levels <= 0) return "off";
+  std::string s;
+  for (int k = 1; k <= levels; ++k) s += (k > 1 ? ", " : "") + std::to_string(stretch_limit_hops(k));
+  return s + " hops";
 }
 
 // fem_rows: the scene has FEM membrane rows, which run without Chebyshev acceleration (a cache does not say).
@@ -56,7 +64,7 @@ void print_settings(const SolverSettings& s, bool fem_rows = false) {
                     ? (c.merge_contacts ? " (contacts on the same points merged)" : " (every contact a row)")
                     : "")
             << ", CCD span " << ccd_span_name(c.ccd_span) << ", tethers "
-            << tethers.str() << "\n";
+            << tethers.str() << ", stretch limits " << stretch_limits_name(s.stretch_limits) << "\n";
 }
 
 void print_scene(const std::string& path) {

@@ -155,7 +155,7 @@ void read_settings(const Node& n, Scene& s) {
             "impact_zone_smoothing", "collision_failsafe", "contact_solver", "ccd_span", "tethers", "collisions",
             "contact_model", "early_pass_fraction", "max_early_passes", "pair_refresh", "merge_contacts", "nearest_margins",
             "predicted_reference", "layer_shock", "still_tolerance", "chebyshev_rho",
-            "chebyshev_delay"});
+            "chebyshev_delay", "stretch_limits"});
   SolverSettings& st = s.settings;
   st.fps = n.number("fps", st.fps, Range::Positive);
   if (n.has("frames")) {
@@ -202,6 +202,7 @@ void read_settings(const Node& n, Scene& s) {
     if (!v) n["ccd_span"].fail("expected \"substep\" or \"pass\"");
     st.collision.ccd_span = *v;
   }
+  st.stretch_limits = n.integer("stretch_limits", st.stretch_limits, 0, 3);
   if (n.has("tethers")) {
     st.tether_stretch = n.number("tethers", st.tether_stretch, Range::NonNegative);
     if (st.tether_stretch != 0 && st.tether_stretch < 1)

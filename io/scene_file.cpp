@@ -61,6 +61,7 @@ const Setting<int> kIntSettings[] = {
     collision("impact_zone_sweeps", &CollisionSettings::impact_zone_sweeps),
     collision("max_early_passes", &CollisionSettings::max_early_passes),
     own("chebyshev_delay", &SolverSettings::chebyshev_delay),
+    own("stretch_limits", &SolverSettings::stretch_limits),
 };
 const Setting<bool> kBoolSettings[] = {
     collision("self_collision", &CollisionSettings::self_collision),
@@ -385,6 +386,8 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
     const char* name = m.name;
     if (std::strcmp(name, "max_early_passes") == 0 && !h5::has_attribute(f, group, name)) continue;
     if (std::strcmp(name, "chebyshev_delay") == 0 && !h5::has_attribute(f, group, name)) continue;
+    // Absent in files written before stretch limits: none.
+    if (std::strcmp(name, "stretch_limits") == 0 && !h5::has_attribute(f, group, name)) continue;
     field(s, m) = h5::read_attribute<int>(f, group, name);
   }
   // Files written before the proximity model ran the paper's.

@@ -103,6 +103,8 @@ const std::vector<Entry>& entries() {
          if (x != 0 && x < 1) throw BadValue{"expected 0 (off) or a stretch of at least 1, got " + v};
          s.settings.tether_stretch = x;
        }},
+      {"stretch_limits", "integer 0 to 3: levels of long-range stretch limits, 4, 16 and 64 hops long (0: none)",
+       [](Scene& s, const std::string& v) { s.settings.stretch_limits = to_int(v, 0); }},
       {"self_collision", "on | off: cloth against itself",
        [](Scene& s, const std::string& v) { s.settings.collision.self_collision = to_bool(v); }},
       {"static_friction", "number >= 0: the solver's static threshold (times each point's friction)",

@@ -130,6 +130,8 @@ void validate_scene(const Scene& s) {
     fail(s, "invalid solver settings (fps > 0, substeps >= 1, iterations/passes >= 0, frame_end >= frame_start)");
   if (!(st.chebyshev_rho >= 0 && st.chebyshev_rho < 1) || st.chebyshev_delay < 1)
     fail(s, "invalid Chebyshev settings (chebyshev_rho in [0, 1), chebyshev_delay >= 1)");
+  if (st.stretch_limits < 0 || st.stretch_limits > 3)
+    fail(s, "stretch_limits " + std::to_string(st.stretch_limits) + " is not 0 (none) to 3 (limits 4, 16 and 64 hops long)");
   if (!(st.tether_stretch == 0 || (st.tether_stretch >= 1 && st.tether_stretch < 1e6)))
     fail(s, "tether stretch " + std::to_string(st.tether_stretch) + " is neither 0 (no tethers) nor at least 1 "
             "(a tether shorter than the cloth's rest path would fight its edges)");

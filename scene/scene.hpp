@@ -22,6 +22,8 @@ struct SolverSettings {
   real chebyshev_rho = 0.95;             // Chebyshev acceleration of a substep's iterations with this estimate of
                                          // their convergence rate (Wang 2015; docs/solver.md); 0: off
   int chebyshev_delay = 4;               // iterations of a substep before the acceleration starts (>= 1)
+  int stretch_limits = 0;                // levels of long-range stretch limits, 4, 16, 64 hops (0: none;
+                                         // constraints/build_stretch_limits.hpp)
   real tether_stretch = 0;               // 0: no tethers; else a point stays within this times its path length
                                          // at rest from the nearest hard-pinned point (constraints/tether.hpp)
   Vec3 gravity{0, -9.81, 0};             // m/s^2

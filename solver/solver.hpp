@@ -5,6 +5,7 @@
 #pragma once
 #include "collision/collision_stage.hpp"
 #include "constraints/build_rows.hpp"
+#include "constraints/build_stretch_limits.hpp"
 #include "constraints/build_tethers.hpp"
 #include "constraints/triangle_strain.hpp"
 #include "core/colouring.hpp"
@@ -377,12 +378,13 @@ class Solver {
     return out;
   }
 
-  // |length / rest - 1| of every distance row at the current positions (-1: rest length 0).
+  // |length / rest - 1| of every distance row at the current positions (-1: rest length 0, or a stretch
+  // limit, which is not an edge).
   View<real*> edge_strains() const {
     const long nd = kind_begin_[kRowDistance + 1] - kind_begin_[kRowDistance];
     const auto strain = Kokkos::subview(row_scratch_, Kokkos::make_pair(0L, nd));
     Kokkos::parallel_for("weft::stats_strain", Kokkos::RangePolicy<Exec>(exec_, 0, nd),
-                         kernels::EdgeStrain<Mem>{rows_of<kRowDistance>(), state_.x, strain});
+                         kernels::EdgeStrain<Mem>{rows_of<kRowDistance>(), materials_, state_.x, strain});
     return strain;
   }
 
@@ -446,7 +448,8 @@ class Solver {
   }
 
   void upload_rows(const Scene& sc) {
-    const std::vector<Row> rows = build_rows(sc, collider_first_vertex_);
+    std::vector<Row> rows = build_rows(sc, collider_first_vertex_);
+    for (const Row& r : build_stretch_limits(sc, w_host_)) rows.push_back(r);
     const size_t n = sc.points.size(), nr = rows.size();
     std::vector<char> movable(n);
     for (size_t i = 0; i < n; ++i) movable[i] = w_host_[i] > 0;

@@ -227,15 +227,18 @@ struct SpeedSquared {
   KOKKOS_INLINE_FUNCTION void operator()(long i) const { out(i) = w(i) > 0 ? dot(v(i), v(i)) : 0.0; }
 };
 
-// |length / rest - 1| of every distance row (-1 for a row of rest length 0).
+// |length / rest - 1| of every distance row (-1 for a row of rest length 0 and for a stretch limit, a row
+// that only pulls: constraints/xpbd.hpp).
 template <class Mem>
 struct EdgeStrain {
   Kokkos::View<PackedRow<kRowDistance>*, Mem> rows;
+  Kokkos::View<XpbdMaterial*, Mem> materials;
   Kokkos::View<Vec3*, Mem> x;
   Kokkos::View<real*, Mem> out;
   KOKKOS_INLINE_FUNCTION void operator()(long r) const {
     const PackedRow<kRowDistance>& row = rows(r);
-    out(r) = row.rest > 0 ? abs_(norm(x(row.idx[1]) - x(row.idx[0])) / row.rest - 1) : -1.0;
+    const bool edge = row.rest > 0 && !(materials(row.material).compress_compliance > 1.7976931348623157e308);
+    out(r) = edge ? abs_(norm(x(row.idx[1]) - x(row.idx[0])) / row.rest - 1) : -1.0;
   }
 };
 

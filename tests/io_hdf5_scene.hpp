@@ -68,6 +68,7 @@ Scene every_kind_scene() {
   st.collision.contact_solver = ContactSolver::Jacobi;
   st.collision.ccd_span = CollisionSettings{}.ccd_span == CcdSpan::Pass ? CcdSpan::Substep : CcdSpan::Pass;
   st.tether_stretch = 1.25;
+  st.stretch_limits = 2;
   st.profile = true;
   return s;
 }
@@ -175,7 +176,8 @@ void expect_identical(const Scene& a, const Scene& b) {
               s.iterations == t.iterations && s.collision_passes == t.collision_passes &&
               s.smoothing_iterations == t.smoothing_iterations && sc.impact_zone_sweeps == tc.impact_zone_sweeps &&
               sc.self_collision == tc.self_collision && sc.impact_zone_smoothing == tc.impact_zone_smoothing &&
-              sc.contact_solver == tc.contact_solver && sc.ccd_span == tc.ccd_span && s.profile == t.profile);
+              sc.contact_solver == tc.contact_solver && sc.ccd_span == tc.ccd_span && s.profile == t.profile &&
+              s.stretch_limits == t.stretch_limits);
   EXPECT_TRUE(differing_settings(s, t).empty());
 }
 
