@@ -159,10 +159,6 @@ std::array<size_t, 2> vertex_range(Kind k) {
   return {0, 0};
 }
 
-// Stiffness standing in for compressstiffness 0 ("no resistance while compressed"): an infinite compliance
-// would turn the XPBD update into NaN (inf * lambda), a compliance of 1e12 moves nothing measurable.
-constexpr real kFreeStiffness = 1e-12;
-
 class Importer {
  public:
   Importer(const std::string& sim_path, const std::string& cons_path, const VellumImportOptions& opt,
@@ -505,7 +501,9 @@ class Importer {
     const real ck = value(a.compress, "compressstiffness", -1);
     const real damping = value(a.damping, "dampingratio", 0);
     if (damping < 0) fail("dampingratio " + num(damping) + " is negative");
-    const XpbdMaterial m = xpbd_material(k, ck == 0 ? kFreeStiffness : ck, damping);
+    // compressstiffness 0 ("no resistance while compressed"): compress compliance +inf, a row that only pulls
+    // (constraints/xpbd.hpp).
+    const XpbdMaterial m = xpbd_material(k, ck, damping);
 
     const Primitive& prim = cons_.primitives[i];
     const auto [lo, hi] = vertex_range(kind);

@@ -12,7 +12,8 @@ struct XpbdMaterial {
   real damping_ratio = 0;
 };
 
-// Vellum stiffness -> compliance; compressstiffness -1 means "same as stiffness". k = 0 is never stored
+// Vellum stiffness -> compliance; compressstiffness -1 means "same as stiffness", 0 no resistance while
+// compressed (compress compliance +inf: the row only pulls, constraints/xpbd.hpp). k = 0 is never stored
 // (those constraints are skipped when built).
 inline XpbdMaterial xpbd_material(real stiffness, real compress_stiffness, real damping_ratio) {
   XpbdMaterial m;

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -68,6 +69,18 @@ VellumImportOptions with_body(const ScratchDir& dir, bool skip = true) {
   opt.frames = std::array<int, 2>{1, 3};
   opt.skip_unsupported = skip;
   return opt;
+}
+
+TEST(WEFT_TEST_SUITE, io_vellum_compress_stiffness_zero_only_pulls) {
+  ScratchDir dir("compress0");
+  const Geometry sim = cloth_sim();
+  write_geo(sim, dir.file("cloth.geo"));
+  ConstraintGeo c(sim);
+  c.add("distance", {0, 1}, 1000, 0.5, {}, 0).write(dir.file("constraints.geo"));
+  const Scene s = import_vellum(dir.file("cloth.geo"), dir.file("constraints.geo"), with_body(dir));
+  ASSERT_EQ(s.constraints.distance.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.constraints.distance[0].m.compliance, 1e-3);
+  EXPECT_EQ(s.constraints.distance[0].m.compress_compliance, std::numeric_limits<real>::infinity());
 }
 
 TEST(WEFT_TEST_SUITE, io_vellum_imports_every_constraint_kind) {
