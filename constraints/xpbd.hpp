@@ -5,7 +5,7 @@
 //   x_i    += w_i g_i dlambda
 // A row whose compress compliance is +inf only pulls (a stretch limit, constraints/build_stretch_limits.hpp):
 // it uses its compliance throughout, and its multiplier never turns positive (the XPBD form of an
-// inequality), so a compressed limit leaves its points alone and gives back what it had pulled.
+// inequality), so a compressed limit leaves its points alone and gives back no more than it had pulled.
 #pragma once
 #include "core/vec.hpp"
 #include "scene/material.hpp"
@@ -17,8 +17,8 @@ namespace weft {
 template <int N>
 KOKKOS_INLINE_FUNCTION real xpbd_delta_lambda(real C, const Vec3 (&g)[N], const real (&w)[N], const Vec3 (&dx)[N],
                                               real lambda, const XpbdMaterial& m, real h) {
-  const bool pulls_only = m.compress_compliance > 1.7976931348623157e308;  // +inf (DBL_MAX is the largest finite)
-  const real alpha = (C < 0 && !pulls_only ? m.compress_compliance : m.compliance) / (h * h);
+  const bool pulls = pulls_only(m);
+  const real alpha = (C < 0 && !pulls ? m.compress_compliance : m.compliance) / (h * h);
   const real gamma = m.damping_ratio / h;
   real wg = 0, gdx = 0;
   for (int i = 0; i < N; ++i) {
@@ -28,7 +28,7 @@ KOKKOS_INLINE_FUNCTION real xpbd_delta_lambda(real C, const Vec3 (&g)[N], const 
   const real denom = (1 + gamma) * wg + alpha;
   if (!(wg > 0) || !(denom > 0)) return 0;
   const real dl = (-C - alpha * lambda - gamma * gdx) / denom;
-  return pulls_only && lambda + dl > 0 ? -lambda : dl;
+  return pulls && lambda + dl > 0 ? -lambda : dl;
 }
 
 }  // namespace weft

@@ -2,6 +2,7 @@
 #pragma once
 #include "backends/simulation_on.hpp"
 #include "constraints/vellum_cloth.hpp"
+#include "io/builtin_scenes.hpp"
 #include "io/procedural.hpp"
 #include "tests/input_error_fixture.hpp"
 
@@ -21,6 +22,23 @@ inline Scene sheet_scene(int res, const ClothMaterial& mat = {}, real y = 1.0) {
   const io::Mesh g = io::grid(res, res, {-0.5, y, -0.5}, {1, 0, 0}, {0, 0, 1});
   add_cloth_piece(s, g.x, g.tris, mat);
   s.settings.collision.self_collision = false;  // solver tests: no collision stage
+  return s;
+}
+
+// Each point's inverse mass as the solver takes it (0 where stopped), for the host-side builders.
+inline std::vector<real> inverse_masses(const Scene& s) {
+  std::vector<real> w(s.points.size());
+  for (size_t i = 0; i < w.size(); ++i) w[i] = s.points.stopped[i] & 1 ? 0.0 : 1 / s.points.mass[i];
+  return w;
+}
+
+// The 12 x 12 hanging sheet at one substep of 10 plain Gauss-Seidel iterations (Chebyshev off): far from
+// converged, it stretches under its own weight.
+inline Scene slack_hanging_sheet() {
+  Scene s = io::make_builtin_scene("hanging-sheet", {12});
+  s.settings.substeps = 1;
+  s.settings.iterations = 10;
+  s.settings.chebyshev_rho = 0;
   return s;
 }
 

@@ -4,7 +4,6 @@
 #include "constraints/build_stretch_limits.hpp"
 #include "constraints/xpbd.hpp"
 #include "core/error.hpp"
-#include "io/builtin_scenes.hpp"
 #include "tests/solver_scene_fixture.hpp"
 
 #include <limits>
@@ -14,11 +13,7 @@ namespace {
 using weft::real;
 using weft::Vec3;
 
-std::vector<real> limit_weights(const weft::Scene& s) {
-  std::vector<real> w(s.points.size());
-  for (size_t i = 0; i < w.size(); ++i) w[i] = s.points.stopped[i] & 1 ? 0.0 : 1 / s.points.mass[i];
-  return w;
-}
+using weft::test::inverse_masses;
 
 TEST(WEFT_TEST_SUITE, stretch_limits_run_straight_along_the_cloth) {
   // An 8 x 8 grid: every point has a straight path of 4 edges in some direction, so every limit is one:
@@ -28,7 +23,7 @@ TEST(WEFT_TEST_SUITE, stretch_limits_run_straight_along_the_cloth) {
   weft::Scene s = weft::test::empty_scene("test-grid");
   weft::add_cloth_piece(s, g.x, g.tris, weft::ClothMaterial{});
   s.settings.stretch_limits = 1;
-  const std::vector<weft::Row> rows = weft::build_stretch_limits(s, limit_weights(s));
+  const std::vector<weft::Row> rows = weft::build_stretch_limits(s, inverse_masses(s));
   ASSERT_EQ(rows.size(), 116u);
   const real edge = 1.0 / 8, compliance = s.constraints.distance.front().m.compliance;
   for (const weft::Row& r : rows) {
@@ -42,7 +37,7 @@ TEST(WEFT_TEST_SUITE, stretch_limits_run_straight_along_the_cloth) {
     EXPECT_EQ(r.m.compress_compliance, std::numeric_limits<real>::infinity());
   }
   s.settings.stretch_limits = 0;
-  EXPECT_TRUE(weft::build_stretch_limits(s, limit_weights(s)).empty());
+  EXPECT_TRUE(weft::build_stretch_limits(s, inverse_masses(s)).empty());
 }
 
 TEST(WEFT_TEST_SUITE, a_stretch_limit_only_pulls) {
@@ -59,10 +54,7 @@ TEST(WEFT_TEST_SUITE, a_stretch_limit_only_pulls) {
 // One substep a frame with few plain Gauss-Seidel iterations (Chebyshev off): the sheet hanging from two
 // corners stretches; stretch limits hold it.
 weft::Scene slack_limited_sheet(int levels) {
-  weft::Scene s = weft::io::make_builtin_scene("hanging-sheet", {12});
-  s.settings.substeps = 1;
-  s.settings.iterations = 10;
-  s.settings.chebyshev_rho = 0;
+  weft::Scene s = weft::test::slack_hanging_sheet();
   s.settings.stretch_limits = levels;
   return s;
 }

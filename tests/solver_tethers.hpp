@@ -2,7 +2,6 @@
 // hanging sheet that too few Gauss-Seidel iterations let stretch, and give the same bits on every backend.
 #include "constraints/build_tethers.hpp"
 #include "core/error.hpp"
-#include "io/builtin_scenes.hpp"
 #include "tests/solver_scene_fixture.hpp"
 
 namespace {
@@ -10,11 +9,7 @@ namespace {
 using weft::real;
 using weft::Vec3;
 
-std::vector<real> inverse_masses(const weft::Scene& s) {
-  std::vector<real> w(s.points.size());
-  for (size_t i = 0; i < w.size(); ++i) w[i] = s.points.stopped[i] & 1 ? 0.0 : 1 / s.points.mass[i];
-  return w;
-}
+using weft::test::inverse_masses;
 
 TEST(WEFT_TEST_SUITE, tethers_follow_the_shortest_path_along_the_cloth) {
   // A 4 x 1 strip of quads (points 0..4 in the first row, 5..9 in the second; diagonals 0-6, 2-6, 2-8, 4-8),
@@ -41,10 +36,7 @@ TEST(WEFT_TEST_SUITE, tethers_follow_the_shortest_path_along_the_cloth) {
 // One substep a frame with few plain Gauss-Seidel iterations (Chebyshev off): the sheet hanging from two
 // corners stretches; tethers hold it.
 weft::Scene slack_sheet(real tethers) {
-  weft::Scene s = weft::io::make_builtin_scene("hanging-sheet", {12});
-  s.settings.substeps = 1;
-  s.settings.iterations = 10;
-  s.settings.chebyshev_rho = 0;
+  weft::Scene s = weft::test::slack_hanging_sheet();
   s.settings.tether_stretch = tethers;
   return s;
 }
