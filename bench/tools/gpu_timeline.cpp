@@ -74,9 +74,22 @@ Event take_event() {
   return s.pool[s.next_event++];
 }
 
+// The driver as the program loaded it, looked up at each launch until found: the CUDA runtime loads it
+// only when Kokkos initializes its device, after this library and after the host's first kernels.
+bool driver(State& s) {
+  if (s.cu.ok()) return true;
+  if (void* lib = dlopen("libcuda.so.1", RTLD_NOW | RTLD_NOLOAD)) {
+    s.cu.event_create = reinterpret_cast<int (*)(Event*, unsigned)>(dlsym(lib, "cuEventCreate"));
+    s.cu.event_record = reinterpret_cast<int (*)(Event, void*)>(dlsym(lib, "cuEventRecord"));
+    s.cu.elapsed = reinterpret_cast<int (*)(float*, Event, Event)>(dlsym(lib, "cuEventElapsedTime"));
+    s.cu.sync = reinterpret_cast<int (*)()>(dlsym(lib, "cuCtxSynchronize"));
+  }
+  return s.cu.ok();
+}
+
 uint64_t begin(const char* name) {
   State& s = state();
-  if (!s.cu.ok()) return ~0ull;
+  if (!driver(s)) return ~0ull;
   if (!s.recording && (s.from_name.empty() || (s.from_name == name && ++s.seen >= s.from_count))) s.recording = true;
   if (!s.recording) return ~0ull;
   auto it = s.name_index.find(name);
@@ -119,12 +132,6 @@ extern "C" {
 
 void kokkosp_init_library(int, uint64_t, uint32_t, void*) {
   State& s = state();
-  if (void* lib = dlopen("libcuda.so.1", RTLD_NOW | RTLD_NOLOAD)) {
-    s.cu.event_create = reinterpret_cast<int (*)(Event*, unsigned)>(dlsym(lib, "cuEventCreate"));
-    s.cu.event_record = reinterpret_cast<int (*)(Event, void*)>(dlsym(lib, "cuEventRecord"));
-    s.cu.elapsed = reinterpret_cast<int (*)(float*, Event, Event)>(dlsym(lib, "cuEventElapsedTime"));
-    s.cu.sync = reinterpret_cast<int (*)()>(dlsym(lib, "cuCtxSynchronize"));
-  }
   if (const char* f = std::getenv("WEFT_TIMELINE_FROM")) {
     const char* colon = std::strrchr(f, ':');
     s.from_name = colon ? std::string(f, colon) : std::string(f);
@@ -173,7 +180,9 @@ void kokkosp_finalize_library() {
   if (const char* path = std::getenv("WEFT_TIMELINE_OUT"))
     if (FILE* f = std::fopen(path, "w")) out = f;
   if (!s.cu.ok() || s.launches.empty()) {
-    std::fprintf(out, "gpu timeline: no CUDA driver or no kernel recorded\n");
+    std::fprintf(out, "gpu timeline: nothing recorded (CUDA driver %s, %ld launches of %s seen, %ld wanted)\n",
+                 s.cu.ok() ? "found" : "not found", s.seen, s.from_name.empty() ? "the first kernel" : s.from_name.c_str(),
+                 s.from_count);
     if (out != stderr) std::fclose(out);
     return;
   }
