@@ -55,16 +55,18 @@ void print_settings(const SolverSettings& s, bool fem_rows = false) {
               << c.max_early_passes << " a substep; pair refresh " << (c.pair_refresh ? "on" : "off")
               << "; nearest margins " << (c.nearest_margins ? "on" : "off") << "; predicted reference "
               << (c.predicted_reference ? "on" : "off") << "; still tolerance " << c.still_tolerance << ")";
+  const char* rows = c.merge_contacts ? " (contacts on the same points merged)" : " (every contact a row)";
   std::cout << "\n"
             << "  impact zone smoothing " << (c.impact_zone_smoothing ? "on" : "off") << " (epsilon "
-            << c.impact_zone_epsilon << ", " << c.impact_zone_sweeps << " sweeps), crossing fail-safe "
-            << (c.collision_failsafe ? "on" : "off") << ", contact solver "
-            << contact_solver_name(c.contact_solver)
-            << (c.contact_solver == ContactSolver::Jacobi || c.contact_model == ContactModel::Proximity
-                    ? (c.merge_contacts ? " (contacts on the same points merged)" : " (every contact a row)")
-                    : "")
-            << ", CCD span " << ccd_span_name(c.ccd_span) << ", tethers "
-            << tethers.str() << ", stretch limits " << stretch_limits_name(s.stretch_limits) << "\n";
+            << c.impact_zone_epsilon << ", " << c.impact_zone_sweeps << " sweeps), ";
+  // The proximity model always sums its contacts Jacobi-style and has no fail-safe or CCD span to show.
+  if (c.contact_model == ContactModel::Proximity)
+    std::cout << "contacts jacobi" << rows;
+  else
+    std::cout << "crossing fail-safe " << (c.collision_failsafe ? "on" : "off") << ", contact solver "
+              << contact_solver_name(c.contact_solver) << (c.contact_solver == ContactSolver::Jacobi ? rows : "")
+              << ", CCD span " << ccd_span_name(c.ccd_span);
+  std::cout << ", tethers " << tethers.str() << ", stretch limits " << stretch_limits_name(s.stretch_limits) << "\n";
 }
 
 void print_scene(const std::string& path) {

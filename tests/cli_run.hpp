@@ -236,6 +236,12 @@ TEST(WEFT_TEST_SUITE, cli_contact_model_switch_is_recorded_and_resumed) {
   EXPECT_NE(weft.output.find("passes 20 (0 early, 1 full queries, 19 still)"), std::string::npos) << weft.output;
   ASSERT_EQ(weft("run builtin:layer-stack --res 4 --frames 1-2 --set still_tolerance=0"), 0) << weft.output;
   EXPECT_NE(weft.output.find("passes 20 (0 early, 1 full queries, 0 still)"), std::string::npos) << weft.output;
+  // The default's cache tells what it ran: Jacobi contacts, no fail-safe or CCD span of the ccd model.
+  ASSERT_EQ(weft("run builtin:layer-stack --res 4 --frames 1-2 --quiet -o " + dir.file("p.h5")), 0) << weft.output;
+  ASSERT_EQ(weft("info " + dir.file("p.h5")), 0) << weft.output;
+  EXPECT_NE(weft.output.find("contacts jacobi (every contact a row)"), std::string::npos) << weft.output;
+  EXPECT_EQ(weft.output.find("fail-safe"), std::string::npos) << weft.output;
+  EXPECT_EQ(weft.output.find("CCD span"), std::string::npos) << weft.output;
 }
 
 TEST(WEFT_TEST_SUITE, cli_pair_refresh_switch_is_recorded_and_resumed) {
