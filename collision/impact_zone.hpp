@@ -1,9 +1,9 @@
 // Impact-zone Laplacian smoothing (paper 2.3, Fig. 3/4): after the last collision pass of a substep, the
-// contacts still violating C < -epsilon r are grouped into connected components over their cloth points
-// (labels: the smallest point index, by integer atomic min until nothing changes), and the velocities of
-// their points are smoothed along the contacts for a fixed number of Jacobi sweeps: each contact takes the
-// mean velocity of its points, each point the mean of its own velocity and those of its contacts. Sums run
-// in contact order, so the result is the same on every backend.
+// velocities of the points of contacts still violating C < -epsilon r are smoothed along those contacts for
+// a fixed number of Jacobi sweeps: each contact takes the mean velocity of its points, each point the mean
+// of its own velocity and those of its contacts. A zone is a connected set of such contacts; the sweeps
+// need no labels for it, since velocity only flows along contacts. Sums run in contact order, so the result
+// is the same on every backend.
 #pragma once
 #include "collision/contact.hpp"
 #include "core/scan.hpp"
@@ -14,9 +14,7 @@
 namespace weft {
 
 struct ImpactZoneStats {
-  long contacts = 0;  // violating contacts
-  long points = 0;    // cloth points in impact zones
-  long zones = 0;     // connected components
+  long points = 0;  // cloth points in impact zones
 };
 
 namespace impact_zone_detail {
@@ -46,7 +44,9 @@ struct CountEntries {
   }
 };
 
-// Entry keys (point, entry) so that sorting groups each point's contacts in contact order.
+// Entry keys: the point. Entries are written in contact order, and the sort is stable, so sorting the
+// points alone gives the order of the unique keys (point, entry) in the fewest passes: each point's contacts
+// grouped, in contact order.
 template <class Mem>
 struct FillEntries : Entries<Mem> {
   Kokkos::View<uint64_t*, Mem> keys;
@@ -56,7 +56,7 @@ struct FillEntries : Entries<Mem> {
     const long e = this->end(i);
     for (int s = 0; s < 4 && o < e; ++s)
       if (this->moves(i, s)) {
-        keys(o) = uint64_t(this->c(i).p[s]) << 32 | uint64_t(o);
+        keys(o) = uint64_t(this->c(i).p[s]);
         vals(o) = uint32_t(i);
         ++o;
       }
@@ -68,47 +68,15 @@ struct FirstEntry {
   Kokkos::View<uint64_t*, Mem> ks;
   Kokkos::View<long*, Mem> first;
   KOKKOS_INLINE_FUNCTION void operator()(long e) const {
-    const long p = long(ks(e) >> 32);
-    if (e == 0 || long(ks(e - 1) >> 32) != p) first(p) = e;
+    const long p = long(ks(e));
+    if (e == 0 || long(ks(e - 1)) != p) first(p) = e;
   }
-};
-
-template <class Mem>
-struct LabelInit {
-  Kokkos::View<int*, Mem> label;
-  KOKKOS_INLINE_FUNCTION void operator()(long p) const { label(p) = int(p); }
-};
-
-// One round of label propagation (integer atomic min); counts the labels that changed.
-template <class Mem>
-struct PropagateLabels : Entries<Mem> {
-  Kokkos::View<int*, Mem> label;
-  KOKKOS_INLINE_FUNCTION void operator()(long i, long& acc) const {
-    if (this->end(i) == this->cnt(i)) return;
-    int m = 0x7fffffff;
-    for (int s = 0; s < 4; ++s)
-      if (this->moves(i, s)) m = label(this->c(i).p[s]) < m ? label(this->c(i).p[s]) : m;
-    for (int s = 0; s < 4; ++s)
-      if (this->moves(i, s) && Kokkos::atomic_fetch_min(&label(this->c(i).p[s]), m) > m) ++acc;
-  }
-};
-
-template <class Mem>
-struct CountZones {
-  Kokkos::View<long*, Mem> first;
-  Kokkos::View<int*, Mem> label;
-  KOKKOS_INLINE_FUNCTION void operator()(long p, long& z) const { z += (first(p) >= 0 && label(p) == int(p)) ? 1 : 0; }
 };
 
 template <class Mem>
 struct CountZonePoints {
   Kokkos::View<long*, Mem> first;
   KOKKOS_INLINE_FUNCTION void operator()(long p, long& z) const { z += first(p) >= 0 ? 1 : 0; }
-};
-
-template <class Mem>
-struct CountViolating : Entries<Mem> {
-  KOKKOS_INLINE_FUNCTION void operator()(long i, long& z) const { z += this->end(i) > this->cnt(i) ? 1 : 0; }
 };
 
 // Jacobi sweep, first half: each violating contact takes the mean velocity of its points.
@@ -138,7 +106,7 @@ struct PointMean {
     if (e0 < 0) return;
     Vec3 s = v(p);
     long k = 1;
-    for (long e = e0; e < entries && long(ks(e) >> 32) == p; ++e, ++k) s += cbar(vs(e));
+    for (long e = e0; e < entries && long(ks(e)) == p; ++e, ++k) s += cbar(vs(e));
     v(p) = s / real(k);
   }
 };
@@ -167,24 +135,17 @@ class ImpactZones {
     grow(vals_, entries);
     grow(first_, np + 1);
     grow(cbar_, n);
-    grow(label_, np);
     const Entries<Mem> en{c, cnt, n, entries};
     Kokkos::parallel_for("weft::iz_fill", Range(exec, 0, n), FillEntries<Mem>{en, keys_, vals_});
     Kokkos::View<uint64_t*, Mem> ks = Kokkos::subview(keys_, std::make_pair(0L, entries));
     Kokkos::View<uint32_t*, Mem> vs = Kokkos::subview(vals_, std::make_pair(0L, entries));
-    radix_sort_pairs(exec, ks, vs, 64);
+    int point_bits = 1;
+    while ((long(1) << point_bits) < np) ++point_bits;
+    radix_sort_pairs(exec, ks, vs, point_bits, sort_scratch_);
     // first(p) = first entry of point p, -1 when p is in no zone; first(np) unused.
     Kokkos::deep_copy(exec, first_, -1L);
     Kokkos::parallel_for("weft::iz_first", Range(exec, 0, entries), FirstEntry<Mem>{ks, first_});
-    // Components, for the statistics.
-    Kokkos::parallel_for("weft::iz_label_init", Range(exec, 0, np), LabelInit<Mem>{label_});
-    for (long changed = 1; changed > 0;) {
-      changed = 0;
-      Kokkos::parallel_reduce("weft::iz_label", Range(exec, 0, n), PropagateLabels<Mem>{en, label_}, changed);
-    }
-    Kokkos::parallel_reduce("weft::iz_zones", Range(exec, 0, np), CountZones<Mem>{first_, label_}, st.zones);
     Kokkos::parallel_reduce("weft::iz_points", Range(exec, 0, np), CountZonePoints<Mem>{first_}, st.points);
-    Kokkos::parallel_reduce("weft::iz_contacts", Range(exec, 0, n), CountViolating<Mem>{en}, st.contacts);
     // Jacobi sweeps of Laplacian smoothing.
     for (int sweep = 0; sweep < sweeps; ++sweep) {
       Kokkos::parallel_for("weft::iz_contact_mean", Range(exec, 0, n), ContactMean<Mem>{en, v, cbar_});
@@ -202,7 +163,7 @@ class ImpactZones {
   Kokkos::View<uint64_t*, Mem> keys_{"weft::iz_keys", 0};
   Kokkos::View<uint32_t*, Mem> vals_{"weft::iz_vals", 0};
   Kokkos::View<Vec3*, Mem> cbar_{"weft::iz_cbar", 0};
-  Kokkos::View<int*, Mem> label_{"weft::iz_label", 0};
+  RadixScratch<Mem> sort_scratch_;
 };
 
 }  // namespace weft
