@@ -12,12 +12,12 @@ struct XpbdMaterial {
   real damping_ratio = 0;
 };
 
-// Vellum stiffness -> compliance; compressstiffness -1 means "same as stiffness", 0 no resistance while
-// compressed (compress compliance +inf: the row only pulls, constraints/xpbd.hpp). k = 0 is never stored
-// (those constraints are skipped when built).
 // A row of this material only pulls: its compress compliance is +inf (DBL_MAX is the largest finite).
 KOKKOS_INLINE_FUNCTION bool pulls_only(const XpbdMaterial& m) { return m.compress_compliance > 1.7976931348623157e308; }
 
+// Vellum stiffness -> compliance; compressstiffness -1 means "same as stiffness", 0 no resistance while
+// compressed (compress compliance +inf: the row only pulls, constraints/xpbd.hpp). k = 0 is never stored
+// (those constraints are skipped when built).
 inline XpbdMaterial xpbd_material(real stiffness, real compress_stiffness, real damping_ratio) {
   XpbdMaterial m;
   m.compliance = 1 / stiffness;
