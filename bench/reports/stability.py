@@ -7,7 +7,8 @@
 Every case is one `weft run ... -o cache.h5`; the figures come from the cache (per-frame statistics,
 docs/formats.md), from `weft check-intersections` on frames of the cache written as OBJ meshes, and, for the
 cases on the sphere and those with a moving collider, from counting cloth points inside that collider. A case passes when the run
-ends (no non-finite point, no time-out, max strain never beyond --diverge-strain) and every criterion of its
+ends (no non-finite point, no time-out, max strain never beyond --diverge-strain, or TWIST_DIVERGE for the
+twist cases) and every criterion of its
 row holds. Writes OUT/stability.md (a table), OUT/stability.json (every figure) and OUT/log.txt.
 Scene variants that the built-in scenes cannot express are JSON files under bench/reports/scenes/; some are
 then edited as scene files (.h5) with h5py, as docs/formats.md allows (compliance exactly 0, a longer twist).
@@ -28,6 +29,9 @@ REST_SPEED = 0.05   # m/s: rms speed at the last frame of a case that should hav
 STRAIN = 0.10       # max triangle strain (largest principal stretch - 1) allowed to a production cloth
 TWIST_P99 = 0.6     # twist: 99th-percentile strain at the last frame; a tightly wound rope of this sheet needs
                     # about 0.4 at its outer fibres, so the limit is what the twist itself imposes, with room
+TWIST_DIVERGE = 100.0  # twist: a run is killed once its max strain passes this, not --diverge-strain: its max is
+                       # that of the few triangles next to the pinned edges (41-56 at the end of runs that come
+                       # to rest, docs/performance.md), and the case is judged on its p99 at the last frame
 SQUEEZE = 0.75      # layer-stack-squeezed: the plate stops at this fraction of the room the layers need
 
 
@@ -63,10 +67,11 @@ def cases():
          "criteria": {"intersections": True, "strain": STRAIN, "penetration": True}, "inside": box_inside},
         {"name": "twist", "what": "built-in twist: each edge turns twice, in opposite directions (4 turns "
          "relative), over frames 1-97, held to 121", "scene": lambda c: "builtin:twist", "res": 48, "args": [],
-         "criteria": {"intersections": True, "p99_strain": TWIST_P99}},
+         "criteria": {"intersections": True, "p99_strain": TWIST_P99}, "diverge_strain": TWIST_DIVERGE},
         {"name": "twist-4-turns-each", "what": "twist variant: each edge turns 4 times (8 relative) at the "
          "built-in speed, over frames 1-193, held to 217 (pin targets rewritten in the scene file)",
-         "scene": twist_4, "res": 48, "args": [], "criteria": {"intersections": True, "p99_strain": TWIST_P99}},
+         "scene": twist_4, "res": 48, "args": [], "criteria": {"intersections": True, "p99_strain": TWIST_P99},
+         "diverge_strain": TWIST_DIVERGE},
         {"name": "layer-stack", "what": "built-in: 6 layers dropped on the ground, the top one 20x heavier",
          "scene": lambda c: "builtin:layer-stack", "res": 24, "args": [],
          "criteria": {"intersections": True, "strain": STRAIN, "rest": True}},
@@ -193,7 +198,7 @@ def run_case(case, ctx, a):
     args = ["run", scene] + (["--res", res] if res and scene.startswith("builtin:") else []) + case["args"] + \
         (["--contact-solver", a.contact_solver] if a.contact_solver else []) + ["--set=" + v for v in a.set] + ["-o", cache]
     r = W.run_weft(ctx["weft"], args, backend=a.backend, threads=a.threads, timeout=ctx["timeout"],
-                   diverge_strain=a.diverge_strain, log=ctx["log"])
+                   diverge_strain=max(case.get("diverge_strain", 0), a.diverge_strain), log=ctx["log"])
     c = W.read_cache(cache)
     shown = [str(x).replace(str(ctx["dir"]), "OUT") for x in args]
     fig = {"case": case["name"], "what": case["what"], "command": "weft " + " ".join(shown),
@@ -280,7 +285,8 @@ def main():
     ap.add_argument("--cases", help="comma-separated case names (default: all)")
     ap.add_argument("--timeout", type=float, help="seconds per case before its run is killed (quick 240, full 3600)")
     ap.add_argument("--diverge-strain", type=float, default=5.0,
-                    help="kill a run whose max strain passes this (default %(default)s): the case fails")
+                    help="kill a run whose max strain passes this (default %(default)s; the twist cases: at least "
+                    f"{TWIST_DIVERGE:g}): the case fails")
     ap.add_argument("--intersection-frames", type=int, default=8, help="frames checked for intersections (default 8)")
     ap.add_argument("--contact-solver", choices=["gauss-seidel", "jacobi"], help="weft --contact-solver for every case")
     ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
@@ -340,7 +346,8 @@ def main():
           f"\nIntersections are counted at {a.intersection_frames} evenly spaced frames (the last included) with "
           "`weft check-intersections frame.obj`; max strain is the largest triangle strain (largest principal "
           "stretch - 1, docs/solver.md) over every frame, p99 strain its 99th percentile over the triangles at the last frame; runs are killed after the time-out or once max strain passes "
-          f"{a.diverge_strain:g}. OUT is {out}. `res` is the built-in scene's --res, or the scale applied to the "
+          f"{a.diverge_strain:g} ({max(TWIST_DIVERGE, a.diverge_strain):g} for the twist cases, whose max is that of the triangles "
+          f"next to the pinned edges). OUT is {out}. `res` is the built-in scene's --res, or the scale applied to the "
           "grid resolutions of a JSON variant.\n"]
     (out / "stability.md").write_text("".join(md))
     W.progress(f"wrote {out / 'stability.md'} and {out / 'stability.json'}: "
