@@ -219,8 +219,9 @@ struct PairDistances {
   NarrowSettings ns;
   SideMesh<Mem> As, Bs;               // Ref: the sides swept from X0 (xs) to xend (x)
   Kokkos::View<int*, Mem> anchor;     // Ref: per point, 2 once a pair anchors it
-  // On the host, without Ref: a pair whose triangles' boxes are farther apart than every corner's query margin Q (qmin)
-  // plus `past` is done before its features are measured (PastBounds). Empty qmin: every pair is measured.
+  // On the host, without Ref: a pair whose triangles' boxes are farther apart than every corner's query
+  // margin Q (qmin) plus `past` is done before its features are measured (past_bounds). Empty qmin: every
+  // pair is measured.
   Kokkos::View<const Fixed*, Mem> qmin;
   Fixed past = 0;
 
