@@ -219,11 +219,12 @@ struct PairDistances {
   NarrowSettings ns;
   SideMesh<Mem> As, Bs;               // Ref: the sides swept from X0 (xs) to xend (x)
   Kokkos::View<int*, Mem> anchor;     // Ref: per point, 2 once a pair anchors it
-  // On the host, without Ref: a pair whose triangles' boxes are farther apart than every corner's query
-  // margin Q (qmin) plus `past` is done before its features are measured (past_bounds). Empty qmin: every
-  // pair is measured.
+  // Without Ref: a pair whose triangles' boxes are farther apart than every corner's query margin Q (qmin)
+  // plus `past` is done before its features are measured (past_bounds; on the device in the cut before
+  // this kernel, DisplacementBounds::add_self_pairs). Empty qmin: every pair is measured.
   Kokkos::View<const Fixed*, Mem> qmin;
   Fixed past = 0;
+  bool culled = false;  // the pairs are those measures() kept (on the device): no test left to run
 
   static constexpr real kCoherence = 0.5;  // a pair keeps its corners' references while D <= (1 - this) d
   KOKKOS_INLINE_FUNCTION Vec3 ref_move(const SideMesh<Mem>& S, int v) const {
@@ -289,8 +290,8 @@ struct PairDistances {
   // only as min(d, Q) (FinishBounds; at a still pass d - 4R against gamma Q less its move, R at most the
   // still distance, which `past` covers), so feature pairs at least Q + past apart change no bound, and
   // none of a pair's features are nearer than its triangles' boxes. Its distances would still lower the
-  // points' nearest distance, which only nearest margins read: they measure every pair. On the host only:
-  // on the H200 the test cost more than the pairs it spared (the 50-layer drop 661 -> 700 ms a frame).
+  // points' nearest distance, which only nearest margins read: they measure every pair. In a stack of
+  // layers a third of the candidate pairs are past every bound (the query reaches two margins).
   KOKKOS_INLINE_FUNCTION bool past_bounds(int ta, const int (&ia)[3], int tb, const int (&ib)[3]) const {
     const Aabb ab = expand(expand(Aabb{A.x(ia[0]), A.x(ia[0])}, A.x(ia[1])), A.x(ia[2]));
     const Aabb bb = expand(expand(Aabb{B.x(ib[0]), B.x(ib[0])}, B.x(ib[1])), B.x(ib[2]));
@@ -325,6 +326,14 @@ struct PairDistances {
     record(P, pp, F, f, d, reach, detect_scale * r);
     return (d2 < lim * lim && narrow_detail::owns_closest_feature(F, TF, u, v, s)) || touches(d);
   }
+  // Whether pair i has a feature pair to measure (without Ref): not past every bound, and its triangles
+  // not apart along either normal by more than the reach (wider than any contact's).
+  KOKKOS_INLINE_FUNCTION bool measures(long i) const {
+    const int ta = pairs(i).first, tb = pairs(i).second;
+    const int ia[3] = {A.tris(ta, 0), A.tris(ta, 1), A.tris(ta, 2)}, ib[3] = {B.tris(tb, 0), B.tris(tb, 1), B.tris(tb, 2)};
+    if (qmin.extent(0) > 0 && past_bounds(ta, ia, tb, ib)) return false;
+    return !pair_cull_detail::swept_apart(A, ia, B, ib, margin_of(A, ta) + margin_of(B, tb));
+  }
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const int ta = pairs(i).first, tb = pairs(i).second;
     const real reach = margin_of(A, ta) + margin_of(B, tb);
@@ -338,7 +347,8 @@ struct PairDistances {
     }
     // Triangles apart by more than the reach along either normal have no feature pair within it (the reach
     // is wider than any contact's).
-    if (Ref ? pair_cull_detail::swept_apart(As, ia, Bs, ib, reach) : pair_cull_detail::swept_apart(A, ia, B, ib, reach)) {
+    if (!culled &&
+        (Ref ? pair_cull_detail::swept_apart(As, ia, Bs, ib, reach) : pair_cull_detail::swept_apart(A, ia, B, ib, reach))) {
       if (contacts) hits(i) = 0;
       return;
     }
@@ -372,6 +382,13 @@ struct PairDistances {
     }
     if (contacts) hits(i) = hit;
   }
+};
+
+// Whether a pair has a feature pair to measure: PairDistances::measures, as a predicate for PairCull::keep_if.
+template <class Mem>
+struct MeasuredPairs {
+  PairDistances<Mem> distances;
+  KOKKOS_INLINE_FUNCTION bool operator()(long i) const { return distances.measures(i); }
 };
 
 // Per point: b = gamma min(d, Q) for points that move; the wanted move starts again from 0. On a refresh
@@ -639,13 +656,29 @@ class DisplacementBounds {
                  long n, const View<Vec3*>& xend, const View<real*>& w, const View<uint32_t*>& hits = {},
                  const NarrowSettings& ns = {}) {
     if (n == 0) return;
-    bounds_detail::PairDistances<Mem> pd{A, B, pairs, xend, w, margin_, dmin_, s_.detect_scale, s_.bound_pins, hits, ns};
-    if (s_.bound_pins && !s_.nearest_margins) {
-      // At a still pass d - 4R stands for a nearest distance d, R at most the still distance (StillDistances).
-      pd.qmin = qmin_;
-      pd.past = s_.still_distance > 0 ? bounds_detail::to_fixed(4 * s_.still_distance) + 2 : 0;
+    Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n), distances(A, B, pairs, xend, w, hits, ns));
+  }
+
+  // Self pairs without references (A and B the cloth at X0), as add_pairs. On the device the pairs that
+  // measure nothing (PairDistances::measures) are cut first by a kernel of their own and the rest compacted
+  // in order, into `cull`'s memory: inside the distances' kernel, skipped and measured pairs side by side
+  // in a warp saved nothing (the 50-layer drop 661 -> 700 ms a frame; cut first, 658 -> 477 ms). On the
+  // host the tests run inline, which is faster there. Sets `measured` and `nm` to the pairs measured, which
+  // `hits` follows; the contacts come out in the same order, so the bits are the same either way.
+  void add_self_pairs(const Exec& exec, const SideMesh<Mem>& cloth, const View<IndexPair*>& pairs, long n,
+                      const View<Vec3*>& xend, const View<real*>& w, const View<uint32_t*>& hits,
+                      const NarrowSettings& ns, PairCull<Exec>& cull, View<const IndexPair*>& measured, long& nm) {
+    measured = pairs;
+    nm = n;
+    if (n == 0) return;
+    bounds_detail::PairDistances<Mem> pd = distances(cloth, cloth, pairs, xend, w, hits, ns);
+    if constexpr (!bounds_detail::PairDistances<Mem>::kBoxes) {
+      measured = cull.keep_if(exec, View<const IndexPair*>(pairs), n, bounds_detail::MeasuredPairs<Mem>{pd}, nm);
+      if (nm == 0) return;
+      pd.pairs = measured;
+      pd.culled = true;
     }
-    Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n), pd);
+    Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, nm), pd);
   }
 
   // A still pass (prepare() decided): the caller keeps the last measured pass's self contacts, and its
@@ -749,6 +782,19 @@ class DisplacementBounds {
     Kokkos::parallel_for("weft::bounds_truncate", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
                          bounds_detail::Truncate<Mem>{x, x0_, w, bound_, want_, deficit_, pending_, cut_, ref_, t_,
                                                       carry, resume, s_.predicted_reference});
+  }
+
+  bounds_detail::PairDistances<Mem> distances(const SideMesh<Mem>& A, const SideMesh<Mem>& B,
+                                              const View<IndexPair*>& pairs, const View<Vec3*>& xend,
+                                              const View<real*>& w, const View<uint32_t*>& hits,
+                                              const NarrowSettings& ns) const {
+    bounds_detail::PairDistances<Mem> pd{A, B, pairs, xend, w, margin_, dmin_, s_.detect_scale, s_.bound_pins, hits, ns};
+    if (s_.bound_pins && !s_.nearest_margins) {
+      // At a still pass d - 4R stands for a nearest distance d, R at most the still distance (StillDistances).
+      pd.qmin = qmin_;
+      pd.past = s_.still_distance > 0 ? bounds_detail::to_fixed(4 * s_.still_distance) + 2 : 0;
+    }
+    return pd;
   }
 
   BoundSettings s_;

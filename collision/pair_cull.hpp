@@ -74,6 +74,14 @@ struct MarkLive {
   }
 };
 
+// live(i): 1 when keep(i) holds.
+template <class Mem, class Keep>
+struct MarkIf {
+  Keep keep;
+  Kokkos::View<uint32_t*, Mem> live;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const { live(i) = keep(i) ? 1u : 0u; }
+};
+
 template <class Mem>
 struct GatherLive {
   MaskJobs<Mem> slots;
@@ -100,6 +108,22 @@ class PairCull {
     using namespace pair_cull_detail;
     lbvh_detail::reserve(live_, n, "weft::cull_live");
     Kokkos::parallel_for("weft::cull_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n), MarkLive<Mem>{A, B, pairs, live_, scale, pad});
+    return gather(exec, pairs, n, kept);
+  }
+
+  // The pairs i of pairs[0, n) for which keep(i) holds, in order, as keep() returns them.
+  template <class Keep>
+  Kokkos::View<const IndexPair*, Mem> keep_if(const Exec& exec, const Kokkos::View<const IndexPair*, Mem>& pairs, long n,
+                                              const Keep& keep, long& kept) {
+    lbvh_detail::reserve(live_, n, "weft::cull_live");
+    Kokkos::parallel_for("weft::cull_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n), pair_cull_detail::MarkIf<Mem, Keep>{keep, live_});
+    return gather(exec, pairs, n, kept);
+  }
+
+ private:
+  Kokkos::View<const IndexPair*, Mem> gather(const Exec& exec, const Kokkos::View<const IndexPair*, Mem>& pairs, long n,
+                                             long& kept) {
+    using namespace pair_cull_detail;
     MaskJobs<Mem> slots;
     kept = count_mask_jobs(exec, live_, n, 1u, offsets_, slots);
     lbvh_detail::reserve(out_, kept, "weft::cull_pairs");
@@ -107,7 +131,6 @@ class PairCull {
     return Kokkos::subview(out_, std::make_pair(0L, kept));
   }
 
- private:
   Kokkos::View<uint32_t*, Mem> live_;
   Kokkos::View<long*, Mem> offsets_{"weft::cull_offsets", 0};
   Kokkos::View<IndexPair*, Mem> out_;
