@@ -291,7 +291,7 @@ struct PairDistances {
   // still distance, which `past` covers), so feature pairs at least Q + past apart change no bound, and
   // none of a pair's features are nearer than its triangles' boxes. Its distances would still lower the
   // points' nearest distance, which only nearest margins read: they measure every pair. In a stack of
-  // layers a third of the candidate pairs are past every bound (the query reaches two margins).
+  // layers a quarter to a third of the candidate pairs are past every bound (the query reaches two margins).
   KOKKOS_INLINE_FUNCTION bool past_bounds(int ta, const int (&ia)[3], int tb, const int (&ib)[3]) const {
     const Aabb ab = expand(expand(Aabb{A.x(ia[0]), A.x(ia[0])}, A.x(ia[1])), A.x(ia[2]));
     const Aabb bb = expand(expand(Aabb{B.x(ib[0]), B.x(ib[0])}, B.x(ib[1])), B.x(ib[2]));
