@@ -326,29 +326,25 @@ struct PairDistances {
     record(P, pp, F, f, d, reach, detect_scale * r);
     return (d2 < lim * lim && narrow_detail::owns_closest_feature(F, TF, u, v, s)) || touches(d);
   }
-  // Whether pair i has a feature pair to measure (without Ref): not past every bound, and its triangles
-  // not apart along either normal by more than the reach (wider than any contact's).
+  // Whether a pair (without Ref) has no feature pair to measure: past every bound (with `past`), or its
+  // triangles apart along either normal by more than the reach (wider than any contact's).
+  KOKKOS_INLINE_FUNCTION bool skipped(int ta, const int (&ia)[3], int tb, const int (&ib)[3], real reach,
+                                      bool past) const {
+    if (past && qmin.extent(0) > 0 && past_bounds(ta, ia, tb, ib)) return true;
+    return pair_cull_detail::swept_apart(A, ia, B, ib, reach);
+  }
   KOKKOS_INLINE_FUNCTION bool measures(long i) const {
     const int ta = pairs(i).first, tb = pairs(i).second;
     const int ia[3] = {A.tris(ta, 0), A.tris(ta, 1), A.tris(ta, 2)}, ib[3] = {B.tris(tb, 0), B.tris(tb, 1), B.tris(tb, 2)};
-    if (qmin.extent(0) > 0 && past_bounds(ta, ia, tb, ib)) return false;
-    return !pair_cull_detail::swept_apart(A, ia, B, ib, margin_of(A, ta) + margin_of(B, tb));
+    return !skipped(ta, ia, tb, ib, margin_of(A, ta) + margin_of(B, tb), true);
   }
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const int ta = pairs(i).first, tb = pairs(i).second;
     const real reach = margin_of(A, ta) + margin_of(B, tb);
     const bool contacts = hits.extent(0) > 0;
     const int ia[3] = {A.tris(ta, 0), A.tris(ta, 1), A.tris(ta, 2)}, ib[3] = {B.tris(tb, 0), B.tris(tb, 1), B.tris(tb, 2)};
-    if constexpr (kBoxes && !Ref) {
-      if (qmin.extent(0) > 0 && past_bounds(ta, ia, tb, ib)) {
-        if (contacts) hits(i) = 0;
-        return;
-      }
-    }
-    // Triangles apart by more than the reach along either normal have no feature pair within it (the reach
-    // is wider than any contact's).
-    if (!culled &&
-        (Ref ? pair_cull_detail::swept_apart(As, ia, Bs, ib, reach) : pair_cull_detail::swept_apart(A, ia, B, ib, reach))) {
+    // Inline, the test past every bound pays on the host only (add_self_pairs).
+    if (!culled && (Ref ? pair_cull_detail::swept_apart(As, ia, Bs, ib, reach) : skipped(ta, ia, tb, ib, reach, kBoxes))) {
       if (contacts) hits(i) = 0;
       return;
     }
@@ -659,20 +655,24 @@ class DisplacementBounds {
     Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n), distances(A, B, pairs, xend, w, hits, ns));
   }
 
-  // Self pairs without references (A and B the cloth at X0), as add_pairs. On the device the pairs that
-  // measure nothing (PairDistances::measures) are cut first by a kernel of their own and the rest compacted
-  // in order, into `cull`'s memory: inside the distances' kernel, skipped and measured pairs side by side
-  // in a warp saved nothing (the 50-layer drop 661 -> 700 ms a frame; cut first, 658 -> 477 ms). On the
-  // host the tests run inline, which is faster there. Sets `measured` and `nm` to the pairs measured, which
-  // `hits` follows; the contacts come out in the same order, so the bits are the same either way.
+  // Whether add_self_pairs cuts the pairs first: on the device. Inside the distances' kernel, skipped and
+  // measured pairs side by side in a warp saved nothing (the 50-layer drop 661 -> 700 ms a frame; cut
+  // first, 658 -> 477 ms); on the host the tests inline are faster.
+  static constexpr bool kCutSelfPairs = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, Mem>::accessible;
+
+  // Self pairs without references (A and B the cloth at X0), as add_pairs. With `cut_first` the pairs that
+  // measure nothing (PairDistances::measures) are cut by a kernel of their own and the rest compacted in
+  // order, into `cull`'s memory (one count read back). Sets `measured` and `nm` to the pairs measured,
+  // which `hits` follows; the contacts come out in the same order, so the bits are the same either way.
   void add_self_pairs(const Exec& exec, const SideMesh<Mem>& cloth, const View<IndexPair*>& pairs, long n,
                       const View<Vec3*>& xend, const View<real*>& w, const View<uint32_t*>& hits,
-                      const NarrowSettings& ns, PairCull<Exec>& cull, View<const IndexPair*>& measured, long& nm) {
+                      const NarrowSettings& ns, PairCull<Exec>& cull, View<const IndexPair*>& measured, long& nm,
+                      bool cut_first = kCutSelfPairs) {
     measured = pairs;
     nm = n;
     if (n == 0) return;
     bounds_detail::PairDistances<Mem> pd = distances(cloth, cloth, pairs, xend, w, hits, ns);
-    if constexpr (!bounds_detail::PairDistances<Mem>::kBoxes) {
+    if (cut_first) {
       measured = cull.keep_if(exec, View<const IndexPair*>(pairs), n, bounds_detail::MeasuredPairs<Mem>{pd}, nm);
       if (nm == 0) return;
       pd.pairs = measured;

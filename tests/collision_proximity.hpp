@@ -5,6 +5,7 @@
 #include "io/builtin_scenes.hpp"
 #include "tests/solver_scene_fixture.hpp"
 
+#include <algorithm>
 #include <array>
 
 namespace {
@@ -61,6 +62,23 @@ struct TwoTriangles {
     return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.bounds());
   }
   Kokkos::View<uint32_t*, Mem> hits{"hits", 1};
+  // A full query whose self pair goes through add_self_pairs, cut first (the device's way) or tested inline
+  // (the host's); the bounds on the host, the pair's contact bits (0 when it was not measured) and the
+  // pairs measured.
+  std::vector<real> query_self(bool cut_first, uint32_t& hit, long& measured) {
+    b.prepare(Exec(), x, x, w, tris, /*first*/ true);
+    cloth.x = cloth.xs = cloth.xo = b.x0();
+    weft::NarrowSettings ns;
+    ns.self = true;
+    weft::PairCull<Exec> cull;
+    Kokkos::View<const weft::IndexPair*, Mem> kept;
+    b.add_self_pairs(Exec(), cloth, pairs, 1, b.relative_end(), w, hits, ns, cull, kept, measured, cut_first);
+    b.measured_self(Exec());
+    b.finish(Exec(), w);
+    hit = measured > 0 ? weft::test::to_host(hits)[0] : 0;
+    const auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.bounds());
+    return std::vector<real>(bh.data(), bh.data() + bh.extent(0));
+  }
   void move_to(const std::vector<Vec3>& p) { Kokkos::deep_copy(x, weft::test::to_device<Exec, Vec3>(p, "moved")); }
 };
 
@@ -137,6 +155,30 @@ TEST(WEFT_TEST_SUITE, proximity_bounds_cut_every_move_back_and_keep_pairs_apart)
   s.move_to(s.x0h);
   s.b.truncate(Exec(), s.x, s.w);
   EXPECT_EQ(s.b.cut_count(Exec()), 0);
+}
+
+// Self pairs cut before the bounds kernel (the device's way) or tested inline (the host's) give the same
+// bounds and contact bits. Margins of 2 cm, thickness 1 mm: at 2 mm the pair is a contact, at 1 cm it bounds
+// every point by gamma 1 cm, at 3 cm it is past every bound (gamma Q = 8 mm whether measured or not) and the
+// cut drops it, at 5 cm it is beyond the two margins' reach.
+TEST(WEFT_TEST_SUITE, proximity_self_pairs_cut_first_or_inline_give_the_same_bits) {
+  for (const real gap : {0.002, 0.01, 0.03, 0.05}) {
+    uint32_t hit[2];
+    long measured[2];
+    std::vector<real> bounds[2];
+    for (int cut = 0; cut < 2; ++cut) {
+      TwoTriangles s(gap, 0.02);
+      bounds[cut] = s.query_self(cut == 1, hit[cut], measured[cut]);
+    }
+    EXPECT_EQ(measured[0], 1) << gap;
+    EXPECT_EQ(measured[1], gap < 0.02 ? 1 : 0) << gap;
+    EXPECT_EQ(hit[0], hit[1]) << gap;
+    EXPECT_EQ(hit[1] != 0, gap < 0.0025) << gap;
+    for (int i = 0; i < 6; ++i) {
+      EXPECT_EQ(weft::test::bits(bounds[0][i]), weft::test::bits(bounds[1][i])) << gap << " point " << i;
+      EXPECT_NEAR(bounds[1][i], 0.4 * std::min(gap, real(0.02)), 1e-12) << gap << " point " << i;
+    }
+  }
 }
 
 // A refresh keeps the last full query's pairs and margins, and spends what each point moved since. Two

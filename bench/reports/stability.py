@@ -6,10 +6,10 @@
 
 Every case is one `weft run ... -o cache.h5`; the figures come from the cache (per-frame statistics,
 docs/formats.md), from `weft check-intersections` on frames of the cache written as OBJ meshes, and, for the
-cases on the sphere and those with a moving collider, from counting cloth points inside that collider. A case passes when the run
-ends (no non-finite point, no time-out, max strain never beyond --diverge-strain, or TWIST_DIVERGE for the
-twist cases) and every criterion of its
-row holds. Writes OUT/stability.md (a table), OUT/stability.json (every figure) and OUT/log.txt.
+cases on the sphere and those with a moving collider, from counting cloth points inside that collider. A case
+passes when the run ends (no non-finite point, no time-out, max strain never beyond --diverge-strain, or
+TWIST_DIVERGE for the twist cases) and every criterion of its row holds.
+Writes OUT/stability.md (a table), OUT/stability.json (every figure) and OUT/log.txt.
 Scene variants that the built-in scenes cannot express are JSON files under bench/reports/scenes/; some are
 then edited as scene files (.h5) with h5py, as docs/formats.md allows (compliance exactly 0, a longer twist).
 """
