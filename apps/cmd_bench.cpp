@@ -125,10 +125,10 @@ int bench(const GlobalOptions& g, const Options& o) {
       contact_solver_name(proximity ? ContactSolver::Jacobi : scene.settings.collision.contact_solver);
   const char* span = ccd_span_name(scene.settings.collision.ccd_span);
   const real tethers = scene.settings.tether_stretch;
-  std::printf("%s: %zu points, %zu triangles, backend %s, contact model %s, %s contacts%s%s, tethers %g, stretch limits %d, %d frames "
+  std::printf("%s: %zu points, %zu triangles, backend %s, contact model %s, %s contacts%s%s, tethers %g, stretch limits %d, coarse levels %d, %d frames "
               "after %d warm-up (ms/frame unfenced; the stages from a second, fenced run)\n",
               scene.name.c_str(), scene.points.size(), scene.triangles.size(), backend_name(b), model, contacts,
-              proximity ? "" : ", CCD span ", proximity ? "" : span, tethers, scene.settings.stretch_limits, opt.frames, opt.warmup);
+              proximity ? "" : ", CCD span ", proximity ? "" : span, tethers, scene.settings.stretch_limits, scene.settings.coarse_levels, opt.frames, opt.warmup);
   std::printf("%-9s %5s %5s %5s %10s %8s %12s %13s %10s %10s %10s %8s %10s %9s %10s %10s %6s %9s\n", "schedule", "iter",
               "pass", "sub", "ms/frame", "fenced", "constraints", "ms/col.pass", "contacts", "smoothing", "fail-safe",
               proximity ? "queries" : "rounds", "#contacts", "mem MiB", "max strain", "p99 strain", "isect", "pin lag m");
@@ -153,6 +153,7 @@ int bench(const GlobalOptions& g, const Options& o) {
     out << "{\"scene\": \"" << scene.name << "\", \"triangles\": " << scene.triangles.size() << ", \"backend\": \""
         << backend_name(b) << "\", \"contact_model\": \"" << model << "\", \"contact_solver\": \"" << contacts << "\", \"ccd_span\": \"" << span
         << "\", \"tether_stretch\": " << tethers << ", \"stretch_limits\": " << scene.settings.stretch_limits
+        << ", \"coarse_levels\": " << scene.settings.coarse_levels
         << ", \"results\": [";
     for (size_t i = 0; i < results.size(); ++i) {
       const Result& r = results[i];

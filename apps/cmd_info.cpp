@@ -66,7 +66,10 @@ void print_settings(const SolverSettings& s, bool fem_rows = false) {
     std::cout << "crossing fail-safe " << (c.collision_failsafe ? "on" : "off") << ", contact solver "
               << contact_solver_name(c.contact_solver) << (c.contact_solver == ContactSolver::Jacobi ? rows : "")
               << ", CCD span " << ccd_span_name(c.ccd_span);
-  std::cout << ", tethers " << tethers.str() << ", stretch limits " << stretch_limits_name(s.stretch_limits) << "\n";
+  std::cout << ", tethers " << tethers.str() << ", stretch limits " << stretch_limits_name(s.stretch_limits)
+            << ", coarse levels ";
+  if (s.coarse_levels > 0) std::cout << s.coarse_levels << " (" << s.coarse_iterations << " sweeps each)\n";
+  else std::cout << "off\n";
 }
 
 void print_scene(const std::string& path) {

@@ -155,7 +155,7 @@ void read_settings(const Node& n, Scene& s) {
             "impact_zone_smoothing", "collision_failsafe", "contact_solver", "ccd_span", "tethers", "collisions",
             "contact_model", "early_pass_fraction", "max_early_passes", "pair_refresh", "merge_contacts", "nearest_margins",
             "predicted_reference", "layer_shock", "still_tolerance", "chebyshev_rho",
-            "chebyshev_delay", "stretch_limits"});
+            "chebyshev_delay", "stretch_limits", "coarse_levels", "coarse_iterations"});
   SolverSettings& st = s.settings;
   st.fps = n.number("fps", st.fps, Range::Positive);
   if (n.has("frames")) {
@@ -203,6 +203,8 @@ void read_settings(const Node& n, Scene& s) {
     st.collision.ccd_span = *v;
   }
   st.stretch_limits = n.integer("stretch_limits", st.stretch_limits, 0, 3);
+  st.coarse_levels = n.integer("coarse_levels", st.coarse_levels, 0, 16);
+  st.coarse_iterations = n.integer("coarse_iterations", st.coarse_iterations, 1, 1000);
   if (n.has("tethers")) {
     st.tether_stretch = n.number("tethers", st.tether_stretch, Range::NonNegative);
     if (st.tether_stretch != 0 && st.tether_stretch < 1)

@@ -11,7 +11,7 @@ namespace {
 // A field added to these structs must be added to the file (and the format version raised): the sizes are
 // checked so that the scene file does not silently drop it (a field that fits in padding escapes the check).
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is stored as 3 doubles");
-static_assert(sizeof(SolverSettings) == 224 && sizeof(CollisionSettings) == 104,
+static_assert(sizeof(SolverSettings) == 232 && sizeof(CollisionSettings) == 104,
               "SolverSettings or CollisionSettings changed: update the settings tables below");
 static_assert(sizeof(XpbdMaterial) == 24 && sizeof(DistanceConstraint) == 40 && sizeof(BendConstraint) == 48 &&
                   sizeof(TriarapConstraint) == 88 && sizeof(PinConstraint) == 72 && sizeof(AttachConstraint) == 64 &&
@@ -62,6 +62,8 @@ const Setting<int> kIntSettings[] = {
     collision("max_early_passes", &CollisionSettings::max_early_passes),
     own("chebyshev_delay", &SolverSettings::chebyshev_delay),
     own("stretch_limits", &SolverSettings::stretch_limits),
+    own("coarse_levels", &SolverSettings::coarse_levels),
+    own("coarse_iterations", &SolverSettings::coarse_iterations),
 };
 const Setting<bool> kBoolSettings[] = {
     collision("self_collision", &CollisionSettings::self_collision),
@@ -388,6 +390,10 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
     if (std::strcmp(name, "chebyshev_delay") == 0 && !h5::has_attribute(f, group, name)) continue;
     // Absent in files written before stretch limits: none.
     if (std::strcmp(name, "stretch_limits") == 0 && !h5::has_attribute(f, group, name)) continue;
+    // Absent in files written before coarse levels: none.
+    if ((std::strcmp(name, "coarse_levels") == 0 || std::strcmp(name, "coarse_iterations") == 0) &&
+        !h5::has_attribute(f, group, name))
+      continue;
     field(s, m) = h5::read_attribute<int>(f, group, name);
   }
   // Files written before the proximity model ran the paper's.

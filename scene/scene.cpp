@@ -132,6 +132,9 @@ void validate_scene(const Scene& s) {
     fail(s, "invalid Chebyshev settings (chebyshev_rho in [0, 1), chebyshev_delay >= 1)");
   if (st.stretch_limits < 0 || st.stretch_limits > 3)
     fail(s, "stretch_limits " + std::to_string(st.stretch_limits) + " is not 0 (none) to 3 (limits 4, 16 and 64 hops long)");
+  if (st.coarse_levels < 0 || st.coarse_levels > 16 || st.coarse_iterations < 1 || st.coarse_iterations > 1000)
+    fail(s, "coarse levels " + std::to_string(st.coarse_levels) + " and coarse iterations " +
+                std::to_string(st.coarse_iterations) + ": expected 0 to 16 levels and 1 to 1000 iterations");
   if (!(st.tether_stretch == 0 || (st.tether_stretch >= 1 && st.tether_stretch < 1e6)))
     fail(s, "tether stretch " + std::to_string(st.tether_stretch) + " is neither 0 (no tethers) nor at least 1 "
             "(a tether shorter than the cloth's rest path would fight its edges)");

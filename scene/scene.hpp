@@ -24,6 +24,9 @@ struct SolverSettings {
   int chebyshev_delay = 4;               // iterations of a substep before the acceleration starts (>= 1)
   int stretch_limits = 0;                // levels of long-range stretch limits, 4, 16, 64 hops (0: none;
                                          // constraints/build_stretch_limits.hpp)
+  int coarse_levels = 0;                 // coarse levels of the stretch rows solved before each substep's
+                                         // iterations (0: none; constraints/build_coarse_levels.hpp)
+  int coarse_iterations = 4;             // Gauss-Seidel sweeps of each coarse level per substep
   real tether_stretch = 0;               // 0: no tethers; else a point stays within this times its path length
                                          // at rest from the nearest hard-pinned point (constraints/tether.hpp)
   Vec3 gravity{0, -9.81, 0};             // m/s^2

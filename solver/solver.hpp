@@ -4,6 +4,7 @@
 // that size or decide the next launches are read back (docs/solver.md), and the statistics after it.
 #pragma once
 #include "collision/collision_stage.hpp"
+#include "constraints/build_coarse_levels.hpp"
 #include "constraints/build_rows.hpp"
 #include "constraints/build_stretch_limits.hpp"
 #include "constraints/build_tethers.hpp"
@@ -205,6 +206,9 @@ class Solver {
     Kokkos::parallel_for("weft::kinematic", Kokkos::RangePolicy<Exec>(exec_, 0, kin_point_.extent(0)),
                          kernels::FollowTargets<Mem>{kin_point_, kin_target_, targets_, targets_before_, state_.x,
                                                        kPinCatchUp});
+    // Before the first collision pass, so that what the coarse levels move counts as the prediction: cut
+    // back by the bounds, the rest is handed on to the next queries (a move cut back after a sweep is lost).
+    if (coarse_levels() > 0) timed_stage("weft::coarse_levels", st_.profile, schedule_.seconds_constraints, [&] { coarse_cycle(h); });
     Kokkos::deep_copy(exec_, lambda_, 0.0);
     if (collision_) collision_->begin_substep(state_, h, s);
     const int P = collision_ ? st_.collision_passes : 0, I = st_.iterations;
@@ -311,6 +315,41 @@ class Solver {
       sweep_h_ = h;
     }
     sweep_->submit();
+  }
+
+  int coarse_levels() const { return int(coarse_colours_.size()); }
+  long coarse_row_count() const { return long(coarse_lambda_.extent(0)); }
+
+  // The coarse levels, coarsest first (constraints/build_coarse_levels.hpp): each level's rows swept
+  // coarse_iterations times, then its followers moved with their parents; recorded once as a graph.
+  void coarse_cycle(real h) {
+    Kokkos::deep_copy(exec_, coarse_xs_, state_.x);
+    Kokkos::deep_copy(exec_, coarse_lambda_, 0.0);
+    if (!coarse_ || coarse_h_ != h) {
+      (void)coarse_.emplace(compat::create_graph(exec_, [&](const compat::GraphNode<Exec>& root) {
+        compat::GraphNode<Exec> node = root;
+        for (int l = coarse_levels() - 1; l >= 0; --l) {
+          for (int it = 0; it < st_.coarse_iterations; ++it)
+            for (const std::pair<long, long>& c : coarse_colours_[size_t(l)])
+              node = node.then_parallel_for(
+                  "weft::coarse_rows", Kokkos::RangePolicy<Exec>(exec_, c.first, c.second),
+                  kernels::ProjectRows<Mem, kRowDistance>{coarse_rows_, 0, materials_, state_.x, state_.x_start,
+                                                          state_.w, coarse_lambda_,
+                                                          RowContext<Mem>{targets_, state_.collider_x}, h});
+          const std::pair<long, long> f = coarse_followers_[size_t(l)];
+          if (f.second > f.first) {
+            const auto range = Kokkos::make_pair(f.first, f.second);
+            node = node.then_parallel_for(
+                "weft::coarse_follow", Kokkos::RangePolicy<Exec>(exec_, 0, f.second - f.first),
+                kernels::FollowParents<Mem>{Kokkos::subview(coarse_follower_, range), coarse_parent_,
+                                            Kokkos::subview(coarse_offset_, range), coarse_weight_, state_.w,
+                                            coarse_xs_, state_.x});
+          }
+        }
+      }));
+      coarse_h_ = h;
+    }
+    coarse_->submit();
   }
 
   // Vellum's smoothing: every row computes its correction from the same positions, and each point moves
@@ -487,6 +526,7 @@ class Solver {
       if (added) materials.push_back(m);
       material[r] = it->second;
     }
+    upload_coarse_levels(sc, materials, material_index);
     materials_ = upload<Mem>(materials, "weft::materials");
     std::vector<size_t> by_place(nr);
     for (size_t r = 0; r < nr; ++r) by_place[size_t(place[r])] = r;
@@ -519,6 +559,60 @@ class Solver {
       point_slot_ = upload<Mem>(slots, "weft::point_slot");
       row_delta_ = View<Vec3*>("weft::row_delta", 5 * nr);
     }
+  }
+
+  // The coarse levels' rows, by level then colour (their materials added to the table), and their followers.
+  void upload_coarse_levels(const Scene& sc, std::vector<XpbdMaterial>& materials,
+                            std::map<std::array<uint64_t, 3>, int>& material_index) {
+    const std::vector<CoarseLevel> levels = build_coarse_levels(sc, w_host_);
+    const size_t n = sc.points.size();
+    std::vector<char> movable(n);
+    for (size_t i = 0; i < n; ++i) movable[i] = w_host_[i] > 0;
+    std::vector<PackedRow<kRowDistance>> rows;
+    std::vector<int> follower, parent;
+    std::vector<long> offset(1, 0);
+    std::vector<real> weight;
+    coarse_colours_.assign(levels.size(), {});
+    coarse_followers_.clear();
+    for (size_t l = 0; l < levels.size(); ++l) {
+      const CoarseLevel& lv = levels[l];
+      const Colouring col = colour_greedy(long(lv.rows.size()), long(n), movable, [&](long r, int(&out)[8]) {
+        return row_particles(lv.rows[size_t(r)], out);
+      });
+      for (int c = 0; c < col.count; ++c) {
+        const long begin = long(rows.size());
+        for (size_t r = 0; r < lv.rows.size(); ++r) {
+          if (col.colour[r] != c) continue;
+          const XpbdMaterial& m = lv.rows[r].m;
+          std::array<uint64_t, 3> bits;
+          std::memcpy(bits.data(), &m.compliance, 8);
+          std::memcpy(bits.data() + 1, &m.compress_compliance, 8);
+          std::memcpy(bits.data() + 2, &m.damping_ratio, 8);
+          const auto [it, added] = material_index.try_emplace(bits, int(materials.size()));
+          if (added) materials.push_back(m);
+          rows.push_back(pack_row<kRowDistance>(lv.rows[r], it->second));
+        }
+        coarse_colours_[l].push_back({begin, long(rows.size())});
+      }
+      const long first = long(follower.size());
+      for (size_t k = 0; k < lv.follower.size(); ++k) {
+        follower.push_back(lv.follower[k]);
+        for (long j = lv.offset[k]; j < lv.offset[k + 1]; ++j) {
+          parent.push_back(lv.parent[size_t(j)]);
+          weight.push_back(lv.weight[size_t(j)]);
+        }
+        offset.push_back(long(parent.size()));
+      }
+      coarse_followers_.push_back({first, long(follower.size())});
+    }
+    if (levels.empty()) return;
+    coarse_rows_ = upload<Mem>(rows, "weft::coarse_rows");
+    coarse_lambda_ = View<real*>("weft::coarse_lambda", rows.size());
+    coarse_follower_ = upload<Mem>(follower, "weft::coarse_follower");
+    coarse_offset_ = upload<Mem>(offset, "weft::coarse_offset");
+    coarse_parent_ = upload<Mem>(parent, "weft::coarse_parent");
+    coarse_weight_ = upload<Mem>(weight, "weft::coarse_weight");
+    coarse_xs_ = View<Vec3*>("weft::coarse_xs", n);
   }
 
   // Every kind's packed rows, from the rows in storage order (by_place) and their material indices.
@@ -575,6 +669,18 @@ class Solver {
   real sweep_h_ = 0;
   std::optional<compat::Graph<Exec>> smooth_;  // jacobi_sweep's kernels on the device, for step smooth_h_
   real smooth_h_ = 0;
+  // Coarse levels: their rows (by level, then colour) and multipliers; per level its colours' row ranges and
+  // its followers' range; the followers' parents and weights; the points where the cycle began.
+  View<PackedRow<kRowDistance>*> coarse_rows_;
+  View<real*> coarse_lambda_;
+  std::vector<std::vector<std::pair<long, long>>> coarse_colours_;
+  std::vector<std::pair<long, long>> coarse_followers_;
+  View<int*> coarse_follower_, coarse_parent_;
+  View<long*> coarse_offset_;
+  View<real*> coarse_weight_;
+  View<Vec3*> coarse_xs_;
+  std::optional<compat::Graph<Exec>> coarse_;  // coarse_cycle's kernels, for step coarse_h_
+  real coarse_h_ = 0;
 };
 
 }  // namespace weft

@@ -212,6 +212,24 @@ struct JacobiPoints {
   }
 };
 
+// Coarse levels: each follower of a level (a point of the level below not on it) moves by the weighted
+// mean of its parents' moves since the cycle began (xs), gathered in a fixed order.
+template <class Mem>
+struct FollowParents {
+  Kokkos::View<const int*, Mem> follower, parent;
+  Kokkos::View<const long*, Mem> offset;
+  Kokkos::View<const real*, Mem> weight, w;
+  Kokkos::View<const Vec3*, Mem> xs;
+  Kokkos::View<Vec3*, Mem> x;
+  KOKKOS_INLINE_FUNCTION void operator()(long k) const {
+    const int f = follower(k);
+    if (!(w(f) > 0)) return;
+    Vec3 d{};
+    for (long j = offset(k); j < offset(k + 1); ++j) d += weight(j) * (x(parent(j)) - xs(parent(j)));
+    x(f) += d;
+  }
+};
+
 // Per-point and per-row quantities for the frame statistics.
 template <class Mem>
 struct KineticEnergy {

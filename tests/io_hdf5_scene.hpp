@@ -69,6 +69,8 @@ Scene every_kind_scene() {
   st.collision.ccd_span = CollisionSettings{}.ccd_span == CcdSpan::Pass ? CcdSpan::Substep : CcdSpan::Pass;
   st.tether_stretch = 1.25;
   st.stretch_limits = 2;
+  st.coarse_levels = 5;
+  st.coarse_iterations = 3;
   st.profile = true;
   return s;
 }
@@ -177,7 +179,8 @@ void expect_identical(const Scene& a, const Scene& b) {
               s.smoothing_iterations == t.smoothing_iterations && sc.impact_zone_sweeps == tc.impact_zone_sweeps &&
               sc.self_collision == tc.self_collision && sc.impact_zone_smoothing == tc.impact_zone_smoothing &&
               sc.contact_solver == tc.contact_solver && sc.ccd_span == tc.ccd_span && s.profile == t.profile &&
-              s.stretch_limits == t.stretch_limits);
+              s.stretch_limits == t.stretch_limits && s.coarse_levels == t.coarse_levels &&
+              s.coarse_iterations == t.coarse_iterations);
   EXPECT_TRUE(differing_settings(s, t).empty());
 }
 

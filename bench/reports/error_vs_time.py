@@ -37,14 +37,15 @@ PRESETS = {
     "quick": {"res_scale": 0.25, "frames": 24, "reference": (40, 25, 2), "timeout": 90, "ref_timeout": 120,
               "families": {"substeps": [1, 2, 5, 10, 20], "iterations": [10, 20, 50, 100, 200],
                            "tethers": [10, 20, 50, 100, 200], "small-steps": [5, 20],
-                           "chebyshev": [10, 20, 50, 100, 200]}},
+                           "chebyshev": [10, 20, 50, 100, 200], "coarse": [10, 20, 50, 100, 200]}},
     # GPU: the built-in resolutions, one second of animation, a reference 20x beyond the costliest schedule in
     # iterations per frame and 2x in substeps (about 5 minutes on one H200).
     "full": {"res_scale": 1.0, "frames": 24, "reference": (100, 40, 4), "timeout": 300, "ref_timeout": 600,
              "families": {"substeps": [1, 2, 5, 10, 20], "iterations": [10, 20, 50, 100, 200],
                           "tethers": [10, 20, 50, 100, 200], "small-steps": [5, 10, 20, 50],
-                          "chebyshev": [10, 20, 50, 100, 200]}},
+                          "chebyshev": [10, 20, 50, 100, 200], "coarse": [10, 20, 50, 100, 200]}},
 }
+COARSE_LEVELS = 4  # the coarse families' levels (docs/solver.md, Coarse levels)
 
 FAMILY_TITLES = {
     "substeps": "substeps x (10 it, 1 pass)",
@@ -54,7 +55,10 @@ FAMILY_TITLES = {
     "paper": "paper-1/2/3",
     "chebyshev": "1 substep, N it, N/10 passes, Chebyshev 0.95",
     "paper-chebyshev": "paper-1/2/3, Chebyshev 0.95",
+    "coarse": f"1 substep, N it, N/10 passes, Chebyshev 0.95, {COARSE_LEVELS} coarse levels",
+    "paper-coarse": f"paper-1/2/3, Chebyshev 0.95, {COARSE_LEVELS} coarse levels",
 }
+PAPER_FAMILIES = ("paper", "paper-chebyshev", "paper-coarse")
 
 
 def schedules(families, chosen, named):
@@ -62,27 +66,30 @@ def schedules(families, chosen, named):
     `tethers` family is `iterations` with `--tethers 1` (docs/solver.md, Tethers); the `paper` family is every
     schedule in `named`, {name: (substeps, iterations, passes)} as `weft info` gives them (scene/schedules.hpp);
     `chebyshev` and `paper-chebyshev` are `iterations` and `paper` with Chebyshev acceleration at 0.95 (the
-    default); every other family runs plain Gauss-Seidel (`--set chebyshev_rho=0`), as does the reference."""
+    default), `coarse` and `paper-coarse` the same with COARSE_LEVELS coarse levels; every other family runs
+    plain Gauss-Seidel (`--set chebyshev_rho=0`), as does the reference."""
     out = []
     for fam in chosen:
-        for v in (named if fam in ("paper", "paper-chebyshev") else families.get(fam, [])):
+        for v in (named if fam in PAPER_FAMILIES else families.get(fam, [])):
             if fam == "substeps":
                 s, it, cp = v, 10, 1
-            elif fam in ("iterations", "tethers", "chebyshev"):
+            elif fam in ("iterations", "tethers", "chebyshev", "coarse"):
                 s, it, cp = 1, v, max(1, v // 10)
             elif fam == "small-steps":
                 s, it, cp = v, 1, 1
             else:
                 s, it, cp = named[v]
-            if fam in ("paper", "paper-chebyshev"):
+            if fam in PAPER_FAMILIES:
                 args, label = ["--schedule", v], v
             else:
                 args, label = ["--substeps", s, "--iterations", it, "--collision-passes", cp], f"{s}x{it}it{cp}p"
             if fam == "tethers":
                 args, label = args + ["--tethers", 1], label + "-t1"
-            if fam.endswith("chebyshev"):  # the acceleration measured at equal time (docs/solver.md, Chebyshev)
+            if fam.endswith(("chebyshev", "coarse")):  # accelerations measured at equal time (docs/solver.md)
                 args, label = args + ["--set", "chebyshev_rho=0.95"], label + "-cheb"
-            else:
+            if fam.endswith("coarse"):
+                args, label = args + ["--set", f"coarse_levels={COARSE_LEVELS}"], label + "-coarse"
+            elif not fam.endswith("chebyshev"):
                 args = args + ["--set", "chebyshev_rho=0"]
             out.append((fam, label, s, it, cp, args))
     return out
@@ -163,7 +170,7 @@ def main():
         checkpoints = sorted(int(c) for c in a.checkpoints.split(","))
     else:
         checkpoints = sorted({first + max(1, round(nframes * q)) for q in (0.25, 0.5, 0.75, 1.0)})
-    if {"paper", "paper-chebyshev"} & set(a.families.split(",")) and not info["schedules"]:
+    if set(PAPER_FAMILIES) & set(a.families.split(",")) and not info["schedules"]:
         sys.exit(f"error: `{weft} info` names no schedules (a weft older than scene/schedules.hpp?)")
     grid = schedules(preset["families"], a.families.split(","), info["schedules"])
     out = Path(a.out)
@@ -229,7 +236,7 @@ def main():
         for b in backends:
             done = {}  # (substeps, iterations, passes, options) -> row: a schedule in two families runs once
             for fam, label, s, it, cp, args in grid:
-                key = (s, it, cp, tuple(str(x) for x in args if str(x).startswith(("--tethers", "chebyshev"))))
+                key = (s, it, cp, tuple(str(x) for x in args if str(x).startswith(("--tethers", "chebyshev", "coarse"))))
                 if key in done:
                     row = dict(done[key], family=fam, schedule=label)
                     rows.append(row)
