@@ -318,7 +318,6 @@ class Solver {
   }
 
   int coarse_levels() const { return int(coarse_colours_.size()); }
-  long coarse_row_count() const { return long(coarse_lambda_.extent(0)); }
 
   // The coarse levels, coarsest first (constraints/build_coarse_levels.hpp): each level's rows swept
   // coarse_iterations times, then its followers moved with their parents; recorded once as a graph.
@@ -512,22 +511,11 @@ class Solver {
         if (key_offset[size_t(k * nc + c) + 1] > key_offset[size_t(k * nc + c)])
           colour_kinds_[size_t(c)].push_back({key_offset[size_t(k * nc + c)], key_offset[size_t(k * nc + c) + 1], k});
     // Materials, each stored once; a row keeps its index.
-    std::vector<XpbdMaterial> materials;
-    std::map<std::array<uint64_t, 3>, int> material_index;  // by bits: -0 and 0 stay apart
+    MaterialTable materials;
     std::vector<int> material(nr);
-    for (size_t r = 0; r < nr; ++r) {
-      const XpbdMaterial& m = rows[r].m;
-      static_assert(sizeof(real) == sizeof(uint64_t));
-      std::array<uint64_t, 3> bits;
-      std::memcpy(bits.data(), &m.compliance, 8);
-      std::memcpy(bits.data() + 1, &m.compress_compliance, 8);
-      std::memcpy(bits.data() + 2, &m.damping_ratio, 8);
-      const auto [it, added] = material_index.try_emplace(bits, int(materials.size()));
-      if (added) materials.push_back(m);
-      material[r] = it->second;
-    }
-    upload_coarse_levels(sc, materials, material_index);
-    materials_ = upload<Mem>(materials, "weft::materials");
+    for (size_t r = 0; r < nr; ++r) material[r] = materials.index(rows[r].m);
+    upload_coarse_levels(sc, materials);
+    materials_ = upload<Mem>(materials.all, "weft::materials");
     std::vector<size_t> by_place(nr);
     for (size_t r = 0; r < nr; ++r) by_place[size_t(place[r])] = r;
     upload_packed(rows, material, by_place, std::make_integer_sequence<int, kRowKinds>{});
@@ -561,9 +549,24 @@ class Solver {
     }
   }
 
+  // The rows' materials, each stored once, told apart by their bits (-0 and 0 stay apart).
+  struct MaterialTable {
+    std::vector<XpbdMaterial> all;
+    std::map<std::array<uint64_t, 3>, int> by_bits;
+    int index(const XpbdMaterial& m) {
+      static_assert(sizeof(real) == sizeof(uint64_t));
+      std::array<uint64_t, 3> bits;
+      std::memcpy(bits.data(), &m.compliance, 8);
+      std::memcpy(bits.data() + 1, &m.compress_compliance, 8);
+      std::memcpy(bits.data() + 2, &m.damping_ratio, 8);
+      const auto [it, added] = by_bits.try_emplace(bits, int(all.size()));
+      if (added) all.push_back(m);
+      return it->second;
+    }
+  };
+
   // The coarse levels' rows, by level then colour (their materials added to the table), and their followers.
-  void upload_coarse_levels(const Scene& sc, std::vector<XpbdMaterial>& materials,
-                            std::map<std::array<uint64_t, 3>, int>& material_index) {
+  void upload_coarse_levels(const Scene& sc, MaterialTable& materials) {
     const std::vector<CoarseLevel> levels = build_coarse_levels(sc, w_host_);
     const size_t n = sc.points.size();
     std::vector<char> movable(n);
@@ -582,15 +585,7 @@ class Solver {
       for (int c = 0; c < col.count; ++c) {
         const long begin = long(rows.size());
         for (size_t r = 0; r < lv.rows.size(); ++r) {
-          if (col.colour[r] != c) continue;
-          const XpbdMaterial& m = lv.rows[r].m;
-          std::array<uint64_t, 3> bits;
-          std::memcpy(bits.data(), &m.compliance, 8);
-          std::memcpy(bits.data() + 1, &m.compress_compliance, 8);
-          std::memcpy(bits.data() + 2, &m.damping_ratio, 8);
-          const auto [it, added] = material_index.try_emplace(bits, int(materials.size()));
-          if (added) materials.push_back(m);
-          rows.push_back(pack_row<kRowDistance>(lv.rows[r], it->second));
+          if (col.colour[r] == c) rows.push_back(pack_row<kRowDistance>(lv.rows[r], materials.index(lv.rows[r].m)));
         }
         coarse_colours_[l].push_back({begin, long(rows.size())});
       }

@@ -12,6 +12,7 @@ schedule that holds the 99th percentile (and the max) to 1% is marked.
 
     python3 bench/reports/stiff_cloth.py --weft build/cuda/bin/weft --backend cuda      # about 11 minutes on an H100
     python3 bench/reports/stiff_cloth.py --res 12 --grid 10x20,20x50                    # a quick look on a CPU
+    python3 bench/reports/stiff_cloth.py ... --materials compliance-0 --set coarse_levels=4   # with an option
 
 Writes OUT/stiff_cloth.md, OUT/stiff_cloth.json and OUT/log.txt.
 """
@@ -56,6 +57,9 @@ def main():
     ap.add_argument("--warmup", type=int, default=40, help="frames before timing (default %(default)s)")
     ap.add_argument("--frames", type=int, default=8, help="frames timed (default %(default)s)")
     ap.add_argument("--timeout", type=float, default=300, help="seconds a run at most (default %(default)s)")
+    ap.add_argument("--materials", default="compliance-0,stiff-x100", help="comma-separated (default %(default)s)")
+    ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                    help="a solver setting for every run (weft --set), repeated for each")
     a = ap.parse_args()
     weft = W.check_weft(a.weft)
     out = W.clean_dir(a.out)
@@ -63,11 +67,13 @@ def main():
     schedules = [tuple(int(v) for v in s.split("x")) for s in a.grid.split(",")]
     scenes = scene_files(weft, out, a.res, log)
     results = []
+    scenes = {m: v for m, v in scenes.items() if m in a.materials.split(",")}
+    settings = [x for v in a.set for x in ("--set", v)]
     for material, (scene, extra) in scenes.items():
         for sub, it in schedules:
             j = out / f"{material}-{sub}x{it}.json"
             r = W.run_weft(weft, ["bench", scene, "--warmup", a.warmup, "--frames", a.frames, "--set",
-                                  f"substeps={sub}", "--set", f"iterations={it}", *extra, "--json", j],
+                                  f"substeps={sub}", "--set", f"iterations={it}", *extra, *settings, "--json", j],
                            backend=a.backend, timeout=a.timeout, log=log)
             row = {"material": material, "substeps": sub, "iterations": it, "status": r.status}
             if r.rc == 0 and j.exists():
@@ -81,7 +87,8 @@ def main():
     log.close()
     info = W.weft_info(weft)
     md = [f"# Stiff cloth: drape-sphere's strain against the schedule\n",
-          f"weft {info['version']} (`{weft}`), backend {a.backend or 'default'}; drape-sphere res {a.res}, frames "
+          f"weft {info['version']} (`{weft}`), backend {a.backend or 'default'}"
+          + "".join(f", `--set {v}`" for v in a.set) + f"; drape-sphere res {a.res}, frames "
           f"{a.warmup + 1}-{a.warmup + a.frames} timed after {a.warmup} warm-up frames; target: max and 99th-percentile "
           f"triangle strain at most {TARGET}. Each cell: ms per frame; max / p99 strain; **bold** the cheapest "
           "schedule that meets the target.\n"]
@@ -98,7 +105,7 @@ def main():
         md.append("\nTarget met by: " + (f"{best['substeps']} x {best['iterations']} at {best['ms_per_frame']:.1f} ms "
                                           "per frame" if best else "no schedule of the grid") + ".\n")
     (out / "stiff_cloth.md").write_text("".join(md))
-    (out / "stiff_cloth.json").write_text(json.dumps({"weft": weft, "res": a.res, "warmup": a.warmup,
+    (out / "stiff_cloth.json").write_text(json.dumps({"weft": weft, "res": a.res, "warmup": a.warmup, "set": a.set,
                                                        "frames": a.frames, "results": results}, indent=1) + "\n")
     W.progress(f"wrote {out / 'stiff_cloth.md'}")
 
