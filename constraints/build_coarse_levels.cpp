@@ -41,13 +41,13 @@ std::vector<CoarseLevel> build_coarse_levels(const Scene& s, const std::vector<r
       if (has[i]) on.push_back(int(i));
   }
   std::vector<CoarseLevel> out;
-  std::vector<std::vector<std::pair<int, real>>> nbr(n);  // per point, (neighbour, rest) on the current level
+  std::vector<std::vector<std::pair<int, Link>>> nbr(n);  // per point, its neighbours on the current level
   std::vector<char> coarse(n, 0);
   while (int(out.size()) < levels && on.size() > 1) {
     for (int p : on) nbr[size_t(p)].clear();
     for (const auto& [ab, l] : links) {
-      nbr[size_t(ab.first)].push_back({ab.second, l.rest});
-      nbr[size_t(ab.second)].push_back({ab.first, l.rest});
+      nbr[size_t(ab.first)].push_back({ab.second, l});
+      nbr[size_t(ab.second)].push_back({ab.first, l});
     }
     // The coarse points: those that do not move first, then the rest, each by index.
     std::vector<int> order;
@@ -57,7 +57,7 @@ std::vector<CoarseLevel> build_coarse_levels(const Scene& s, const std::vector<r
     std::vector<int> next;
     for (int p : order) {
       bool free = true;
-      for (const auto& [q, r] : nbr[size_t(p)]) free = free && !coarse[size_t(q)];
+      for (const auto& [q, l] : nbr[size_t(p)]) free = free && !coarse[size_t(q)];
       if (free) {
         coarse[size_t(p)] = 1;
         next.push_back(p);
@@ -71,10 +71,10 @@ std::vector<CoarseLevel> build_coarse_levels(const Scene& s, const std::vector<r
       if (coarse[size_t(p)]) continue;
       real sum = 0;
       const size_t first = lv.parent.size();
-      for (const auto& [q, r] : nbr[size_t(p)])
+      for (const auto& [q, l] : nbr[size_t(p)])
         if (coarse[size_t(q)]) {
           lv.parent.push_back(q);
-          lv.weight.push_back(r > 0 ? 1 / r : 1);
+          lv.weight.push_back(l.rest > 0 ? 1 / l.rest : 1);
           sum += lv.weight.back();
         }
       for (size_t k = first; k < lv.parent.size(); ++k) lv.weight[k] /= sum;
@@ -83,22 +83,17 @@ std::vector<CoarseLevel> build_coarse_levels(const Scene& s, const std::vector<r
     }
     // The next level's links: coarse a - follower m - coarse b, and coarse a - m1 - m2 - coarse b.
     Links up;
+    const auto chain = [](Link x, Link y) { return Link{x.rest + y.rest, x.compliance + y.compliance}; };
     for (int m : lv.follower)
-      for (const auto& [a, ra] : nbr[size_t(m)]) {
+      for (const auto& [a, la] : nbr[size_t(m)]) {
         if (!coarse[size_t(a)]) continue;
-        const Link la = links.at({std::min(a, m), std::max(a, m)});
-        for (const auto& [b, rb] : nbr[size_t(m)]) {
-          if (coarse[size_t(b)] && a < b) {
-            const Link lb = links.at({std::min(b, m), std::max(b, m)});
-            keep_shorter(up, a, b, Link{la.rest + lb.rest, la.compliance + lb.compliance});
+        for (const auto& [b, lb] : nbr[size_t(m)]) {
+          if (coarse[size_t(b)]) {
+            if (a < b) keep_shorter(up, a, b, chain(la, lb));
+            continue;
           }
-          if (coarse[size_t(b)]) continue;
-          const Link mid = links.at({std::min(b, m), std::max(b, m)});
-          for (const auto& [c, rc] : nbr[size_t(b)]) {
-            if (!coarse[size_t(c)] || c == a) continue;
-            const Link lc = links.at({std::min(b, c), std::max(b, c)});
-            keep_shorter(up, a, c, Link{la.rest + mid.rest + lc.rest, la.compliance + mid.compliance + lc.compliance});
-          }
+          for (const auto& [c, lc] : nbr[size_t(b)])
+            if (coarse[size_t(c)] && c != a) keep_shorter(up, a, c, chain(chain(la, lb), lc));
         }
       }
     for (const auto& [ab, l] : up) {
