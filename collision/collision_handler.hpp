@@ -82,6 +82,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
       for (real th : s.points.thickness)
         if (th > 0 && (thinnest == 0 || th < thinnest)) thinnest = th;
       bound_settings_.still_distance = settings_.still_tolerance * thinnest;
+      // Far below any contact's reach, far above the rounding of positions and of the fixed-point distances.
+      bound_settings_.separation = 1e-4 * thinnest;
       // A triangle's smallest query margin: an unfound pair keeps more than (1 - gamma)(m_A + m_B), at
       // least the contact reach of its points.
       std::vector<real> floor(s.triangles.size()), ceiling(s.triangles.size());

@@ -387,10 +387,19 @@ struct MeasuredPairs {
   KOKKOS_INLINE_FUNCTION bool operator()(long i) const { return distances.measures(i); }
 };
 
-// Per point: b = gamma min(d, Q) for points that move; the wanted move starts again from 0. On a refresh
-// (pairs kept from the last full query, at xq), the point's move since then beside the translations since
-// then (tq) is spent from gamma Q: however many refreshes follow, a point stays within gamma Q of where the
-// full query saw it, so a pair that query did not find still keeps its (1 - gamma)(m_A + m_B).
+// Beside gamma d, at most (d - sep) / 2: a pair that cannot part (pinned corners driven together, a jam)
+// keeps (1 - 2 gamma) of its distance per query, which left alone shrinks towards 0 until rounding decides
+// which side a point lies on (the twist crossed itself at 1e-13 m); held back here it never closes past
+// sep. Where gamma d is the smaller, as for every pair farther than sep / (1 - 2 gamma), the same bits.
+KOKKOS_INLINE_FUNCTION real apart(real b, Fixed d, real sep) {
+  return min_(b, max_(real(0), real(0.5) * (from_fixed(d) - sep)));
+}
+
+// Per point: b = gamma min(d, Q) for points that move (never closing a pair past sep: apart()); the wanted
+// move starts again from 0. On a refresh (pairs kept from the last full query, at xq), the point's move
+// since then beside the translations since then (tq) is spent from gamma Q: however many refreshes follow,
+// a point stays within gamma Q of where the full query saw it, so a pair that query did not find still
+// keeps its (1 - gamma)(m_A + m_B).
 template <class Mem>
 struct FinishBounds {
   Kokkos::View<const real*, Mem> w;
@@ -398,7 +407,7 @@ struct FinishBounds {
   Kokkos::View<real*, Mem> bound, want, near;
   Kokkos::View<const Vec3*, Mem> x0, xq;
   Vec3 tq;
-  real gamma;
+  real gamma, sep;
   bool pins, refresh;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     near(i) = from_fixed(dmin(i));
@@ -409,12 +418,12 @@ struct FinishBounds {
     }
     if (!refresh) {
       const Fixed f = dmin(i) < qmin(i) ? dmin(i) : qmin(i);
-      bound(i) = gamma * from_fixed(f);
+      bound(i) = apart(gamma * from_fixed(f), dmin(i), sep);
       want(i) = 0;
       return;
     }
     const real left = gamma * from_fixed(qmin(i)) - norm(x0(i) - xq(i) - tq);
-    bound(i) = max_(real(0), min_(gamma * from_fixed(dmin(i)), left));
+    bound(i) = max_(real(0), min_(apart(gamma * from_fixed(dmin(i)), dmin(i), sep), left));
   }
 };
 
@@ -534,6 +543,7 @@ struct BoundSettings {
   bool predicted_reference = false;  // each point bounded beside its own wanted move (PairDistances' Ref)
   int max_anchor_rounds = 3;     // then every point is anchored to t, and references rest until the next frame
   real still_distance = 0;       // a refresh is still while no point moved more than this since the last measured pass (0: never)
+  real separation = 0;           // no pair is closed past this (FinishBounds, apart())
 };
 
 // The bounds' working memory and kernels. Usage per query: prepare() (the common translation and the
@@ -745,7 +755,7 @@ class DisplacementBounds {
   void finish(const Exec& exec, const View<real*>& w) {
     Kokkos::parallel_for("weft::bounds_finish", Kokkos::RangePolicy<Exec>(exec, 0, bound_.extent(0)),
                          bounds_detail::FinishBounds<Mem>{w, dmin_, qmin_, bound_, want_, near_, x0_, xq_, tq_, s_.gamma,
-                                                          s_.bound_pins, refresh_});
+                                                          s_.separation, s_.bound_pins, refresh_});
     // With references a point that followed its own stands near X0 + r, not X0, at the next refresh.
     if (sweep_)
       Kokkos::parallel_for("weft::bounds_reference_end", Kokkos::RangePolicy<Exec>(exec, 0, x0_.extent(0)),

@@ -157,6 +157,48 @@ TEST(WEFT_TEST_SUITE, proximity_bounds_cut_every_move_back_and_keep_pairs_apart)
   EXPECT_EQ(s.b.cut_count(Exec()), 0);
 }
 
+// A pair that cannot part (two triangles driven into each other query after query, as pinned corners of a
+// jammed twist are) keeps (1 - 2 gamma) of its distance per query: without a floor 13 queries take 1 mm to
+// below the distances' fixed-point resolution (2^-40 m), where rounding decides on which side a point lies.
+// With the separation floor the pair never closes past it, and while it is farther than floor /
+// (1 - 2 gamma) its bounds are the same bits as without the floor.
+TEST(WEFT_TEST_SUITE, proximity_bounds_never_close_a_pair_past_the_separation_floor) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  const real gap = 0.001, floor = 1e-7;
+  std::vector<std::vector<real>> bounds[2];
+  real closest[2];
+  for (int with = 0; with < 2; ++with) {
+    weft::BoundSettings bs;
+    bs.separation = with ? floor : 0;
+    TwoTriangles s(gap, 0.02, bs);
+    std::vector<Vec3> at = s.x0h;
+    for (int q = 0; q < 40; ++q) {
+      s.move_to(at);
+      const auto b = s.query();
+      bounds[with].emplace_back(b.data(), b.data() + 6);
+      // Every point wants 1 cm towards the other triangle: each is cut back to its bound.
+      std::vector<Vec3> wanted = at;
+      for (int i = 0; i < 6; ++i) wanted[size_t(i)].y += i < 3 ? 0.01 : -0.01;
+      s.move_to(wanted);
+      s.b.truncate(Exec(), s.x, s.w);
+      const auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.x);
+      for (int i = 0; i < 6; ++i) at[size_t(i)] = xh(i);
+    }
+    closest[with] = at[3].y - at[0].y;
+  }
+  EXPECT_LT(closest[0], 1e-12);  // what the floor is for
+  EXPECT_GE(closest[1], floor * (1 - 1e-6));
+  EXPECT_LT(closest[1], 2 * floor);  // the pair did close up to the floor
+  const real gamma = weft::BoundSettings{}.gamma;
+  for (size_t q = 0; q < 40; ++q) {
+    const real d = bounds[0][q][0] / gamma;  // the pair's distance at query q, the same in both runs so far
+    if (!(d > floor / (1 - 2 * gamma))) break;
+    for (int i = 0; i < 6; ++i)
+      EXPECT_EQ(weft::test::bits(bounds[1][q][size_t(i)]), weft::test::bits(bounds[0][q][size_t(i)]))
+          << "query " << q << " point " << i;
+  }
+}
+
 // Self pairs cut before the bounds kernel (the device's way) or tested inline (the host's) give the same
 // bounds and contact bits. Margins of 2 cm, thickness 1 mm: at 2 mm the pair is a contact, at 1 cm it bounds
 // every point by gamma 1 cm, at 3 cm it is past every bound (gamma Q = 8 mm whether measured or not) and the
