@@ -443,6 +443,29 @@ struct MarkSpent {
   }
 };
 
+constexpr Fixed kWhole = Fixed(kScale);  // a share of 1
+
+// Per pin of a group (at a query's truncation): the fraction of its move beside its base that its bound
+// allows, folded by integer atomic min (rounded down) into its group's share: every pin of the group then
+// takes that share of its move, within its own bound, and a jammed handle stalls as a whole.
+template <class Mem>
+struct PinShares {
+  Kokkos::View<const Vec3*, Mem> x, x0, deficit, ref;
+  Kokkos::View<const int*, Mem> pending, group;
+  Kokkos::View<const real*, Mem> w, bound;
+  Kokkos::View<Fixed*, Mem> share;
+  Vec3 t;
+  bool resume, reference;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    const int g = group(i);
+    if (g < 0) return;
+    Vec3 base = x0(i) + t;
+    if (reference) base += ref(i);
+    const real l2 = norm2(wanted_position(x, deficit, pending, w, i, resume) - base), b = bound(i);
+    if (l2 > b * b) Kokkos::atomic_fetch_min(&share(g), Fixed(b / sqrt_(l2) * kScale));
+  }
+};
+
 // Per point (that moves: bounds of the others are far): cut its move from X0 + t back to its bound; counts the points cut back and keeps the largest
 // move wanted (the next query's margins grow to let it through). With `carry`, the part cut off is kept
 // as the point's deficit (the prediction's motion, handed on to the next query); first adds the deficit
@@ -459,6 +482,8 @@ struct Truncate {
   Kokkos::View<const Vec3*, Mem> ref;  // with `reference`, the point's reference move beside t
   Vec3 t;
   bool carry, resume, reference;
+  Kokkos::View<const int*, Mem> group;     // empty, or per point its pin group (-1: none)
+  Kokkos::View<const Fixed*, Mem> share;   // per pin group, the fraction of their moves its pins take
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const bool pinned = !(w(i) > 0);
     // A pinned point goes on to its target itself, so it lands on it exactly.
@@ -467,6 +492,16 @@ struct Truncate {
     if (reference) base += ref(i);
     const Vec3 d = xi - base;
     const real l2 = norm2(d), b = bound(i);
+    // A pin of a group some pin of which is held short: the group's share of its move (PinShares).
+    const Fixed f = group.extent(0) > 0 && group(i) >= 0 ? share(group(i)) : kWhole;
+    if (f < kWhole) {
+      want(i) = max_(want(i), sqrt_(l2));
+      x(i) = base + from_fixed(f) * d;
+      deficit(i) = xi;
+      pending(i) = 1;
+      cut(i) = 1;
+      return;
+    }
     if (!(l2 > b * b)) {
       if (resume) x(i) = xi;
       if (carry) {
@@ -582,6 +617,11 @@ class DisplacementBounds {
   // query, and each round costs as much as the pairs' distances without references.
   bool references() const { return s_.predicted_reference && active_; }
   void retry_references() { active_ = true; }
+  // Pins that hold back together: per point its group (-1: none), `groups` of them.
+  void set_pin_groups(const View<int*>& group, long groups) {
+    pin_group_ = group;
+    pin_share_ = View<bounds_detail::Fixed*>("weft::bounds_pin_share", groups);
+  }
   bool sweeps() const { return sweep_; }  // the last prepare()'s query sweeps reference moves
 
   long movable() const { return movable_ > 0 ? movable_ : 0; }  // counted at the first prepare()
@@ -788,10 +828,20 @@ class DisplacementBounds {
     return moved_max_;
   }
 
+  // A query's truncation (carry) gives pin groups their shares first; the truncations after the sweeps
+  // find every pin where the query left it.
   void run_truncate(const Exec& exec, const View<Vec3*>& x, const View<real*>& w, bool carry, bool resume) {
+    using namespace bounds_detail;
+    const bool groups = carry && pin_share_.extent(0) > 0;
+    if (groups) {
+      Kokkos::deep_copy(exec, pin_share_, kWhole);
+      Kokkos::parallel_for("weft::bounds_pin_shares", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
+                           PinShares<Mem>{x, x0_, deficit_, ref_, pending_, pin_group_, w, bound_, pin_share_, t_, resume,
+                                          s_.predicted_reference});
+    }
     Kokkos::parallel_for("weft::bounds_truncate", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
-                         bounds_detail::Truncate<Mem>{x, x0_, w, bound_, want_, deficit_, pending_, cut_, ref_, t_,
-                                                      carry, resume, s_.predicted_reference});
+                         Truncate<Mem>{x, x0_, w, bound_, want_, deficit_, pending_, cut_, ref_, t_, carry, resume,
+                                       s_.predicted_reference, groups ? pin_group_ : View<int*>(), pin_share_});
   }
 
   bounds_detail::PairDistances<Mem> distances(const SideMesh<Mem>& A, const SideMesh<Mem>& B,
@@ -820,6 +870,8 @@ class DisplacementBounds {
   View<Vec3*> xq_;        // X0 of the last full query
   View<Vec3> sum_;        // the wanted moves' sum, for the common translation
   View<real*> near_;      // per point, its nearest feature at the last query (far before the first)
+  View<int*> pin_group_;          // per point, its pin group (collision/pin_groups.hpp) or -1
+  View<bounds_detail::Fixed*> pin_share_;  // per pin group, the share of their moves its pins take
   View<Vec3*> ref_;       // predicted_reference: per point, its reference move beside t (0 once anchored)
   View<int*> anchor_;     // predicted_reference: 0 on its reference, 2 anchored this round, 1 before
   long stats_anchored_ = 0;

@@ -37,13 +37,15 @@ PRESETS = {
     "quick": {"res_scale": 0.25, "frames": 24, "reference": (40, 25, 2), "timeout": 90, "ref_timeout": 120,
               "families": {"substeps": [1, 2, 5, 10, 20], "iterations": [10, 20, 50, 100, 200],
                            "tethers": [10, 20, 50, 100, 200], "small-steps": [5, 20],
-                           "chebyshev": [10, 20, 50, 100, 200], "coarse": [10, 20, 50, 100, 200]}},
+                           "chebyshev": [10, 20, 50, 100, 200], "chebyshev-90": [10, 20, 50, 100, 200],
+                           "coarse": [10, 20, 50, 100, 200]}},
     # GPU: the built-in resolutions, one second of animation, a reference 20x beyond the costliest schedule in
     # iterations per frame and 2x in substeps (about 5 minutes on one H200).
     "full": {"res_scale": 1.0, "frames": 24, "reference": (100, 40, 4), "timeout": 300, "ref_timeout": 600,
              "families": {"substeps": [1, 2, 5, 10, 20], "iterations": [10, 20, 50, 100, 200],
                           "tethers": [10, 20, 50, 100, 200], "small-steps": [5, 10, 20, 50],
-                          "chebyshev": [10, 20, 50, 100, 200], "coarse": [10, 20, 50, 100, 200]}},
+                          "chebyshev": [10, 20, 50, 100, 200], "chebyshev-90": [10, 20, 50, 100, 200],
+                          "coarse": [10, 20, 50, 100, 200]}},
 }
 COARSE_LEVELS = 4  # the coarse families' levels (docs/solver.md, Coarse levels)
 
@@ -55,10 +57,13 @@ FAMILY_TITLES = {
     "paper": "paper-1/2/3",
     "chebyshev": "1 substep, N it, N/10 passes, Chebyshev 0.95",
     "paper-chebyshev": "paper-1/2/3, Chebyshev 0.95",
+    "chebyshev-90": "1 substep, N it, N/10 passes, Chebyshev 0.9",
+    "paper-chebyshev-90": "paper-1/2/3, Chebyshev 0.9",
     "coarse": f"1 substep, N it, N/10 passes, Chebyshev 0.95, {COARSE_LEVELS} coarse levels",
     "paper-coarse": f"paper-1/2/3, Chebyshev 0.95, {COARSE_LEVELS} coarse levels",
 }
-PAPER_FAMILIES = ("paper", "paper-chebyshev", "paper-coarse")
+PAPER_FAMILIES = ("paper", "paper-chebyshev", "paper-chebyshev-90", "paper-coarse")
+CHEBYSHEV_RHO = {"chebyshev-90": 0.9, "paper-chebyshev-90": 0.9}  # else 0.95, the default
 
 
 def schedules(families, chosen, named):
@@ -66,14 +71,15 @@ def schedules(families, chosen, named):
     `tethers` family is `iterations` with `--tethers 1` (docs/solver.md, Tethers); the `paper` family is every
     schedule in `named`, {name: (substeps, iterations, passes)} as `weft info` gives them (scene/schedules.hpp);
     `chebyshev` and `paper-chebyshev` are `iterations` and `paper` with Chebyshev acceleration at 0.95 (the
-    default), `coarse` and `paper-coarse` the same with COARSE_LEVELS coarse levels; every other family runs
+    default; the `-90` families at 0.9), `coarse` and `paper-coarse` the same with COARSE_LEVELS coarse
+    levels; every other family runs
     plain Gauss-Seidel (`--set chebyshev_rho=0`), as does the reference."""
     out = []
     for fam in chosen:
         for v in (named if fam in PAPER_FAMILIES else families.get(fam, [])):
             if fam == "substeps":
                 s, it, cp = v, 10, 1
-            elif fam in ("iterations", "tethers", "chebyshev", "coarse"):
+            elif fam in ("iterations", "tethers", "chebyshev", "chebyshev-90", "coarse"):
                 s, it, cp = 1, v, max(1, v // 10)
             elif fam == "small-steps":
                 s, it, cp = v, 1, 1
@@ -85,11 +91,13 @@ def schedules(families, chosen, named):
                 args, label = ["--substeps", s, "--iterations", it, "--collision-passes", cp], f"{s}x{it}it{cp}p"
             if fam == "tethers":
                 args, label = args + ["--tethers", 1], label + "-t1"
-            if fam.endswith(("chebyshev", "coarse")):  # accelerations measured at equal time (docs/solver.md)
-                args, label = args + ["--set", "chebyshev_rho=0.95"], label + "-cheb"
+            cheb = fam.endswith(("chebyshev", "chebyshev-90", "coarse"))
+            if cheb:  # accelerations measured at equal time (docs/solver.md)
+                rho = CHEBYSHEV_RHO.get(fam, 0.95)
+                args, label = args + ["--set", f"chebyshev_rho={rho}"], label + ("-cheb" if rho == 0.95 else f"-cheb{rho}")
             if fam.endswith("coarse"):
                 args, label = args + ["--set", f"coarse_levels={COARSE_LEVELS}"], label + "-coarse"
-            elif not fam.endswith("chebyshev"):
+            elif not cheb:
                 args = args + ["--set", "chebyshev_rho=0"]
             out.append((fam, label, s, it, cp, args))
     return out
