@@ -97,14 +97,14 @@ class CollisionHandler final : public CollisionStage<Exec> {
       }
       bounds_.emplace(long(s.points.size()), upload<Mem>(floor, "weft::bounds_floor"), upload<Mem>(ceiling, "weft::bounds_ceiling"),
                       bound_settings_);
-      // The points that do not move by themselves, as the solver weighs them (w = 0).
-      std::vector<char> pinned(s.points.size(), 0);
-      for (int k : s.kinematic_point) pinned[size_t(k)] = 1;
-      for (size_t i = 0; i < s.points.size(); ++i)
-        if (!(s.points.mass[i] > 0) || (s.points.stopped[i] & 1)) pinned[i] = 1;
-      const PinGroups groups = pin_groups(s.triangles, pinned);
-      if (groups.count > 0 && bound_settings_.bound_pins)
-        bounds_->set_pin_groups(upload<Mem>(groups.group, "weft::pin_group"), groups.count);
+      // Pins that follow an animation hold back in groups. A still pin is held back only by the common
+      // translation dragging it off where it stands, and alone it is dragged least.
+      if (bound_settings_.animated_pins && bound_settings_.bound_pins) {
+        std::vector<char> pinned(s.points.size(), 0);
+        for (int k : s.kinematic_point) pinned[size_t(k)] = 1;
+        const PinGroups groups = pin_groups(s.triangles, pinned);
+        if (groups.count > 0) bounds_->set_pin_groups(upload<Mem>(groups.group, "weft::pin_group"), groups.count);
+      }
     }
     cloth_boxes_ = View<Aabb*>("weft::cloth_boxes", s.triangles.size());
     // Collider side: the collider set, each vertex with its collider's thickness and friction; a collider

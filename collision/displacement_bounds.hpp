@@ -7,7 +7,9 @@
 // (1 - gamma)(m_A + m_B), which the margins make at least the contact reach.
 //
 // Distances are folded per point by integer atomic min on fixed-point values (2^-40 m), so the bounds are
-// the same bits on every backend and thread count; the truncation counts the points it cut back.
+// the same bits on every backend and thread count; the truncation counts the points it cut back. No bound
+// closes a pair past a separation floor (apart()), and the animated pins of a group take one share of their
+// moves (PinShares).
 #pragma once
 #include "collision/ccd_proximity.hpp"
 #include "collision/lbvh.hpp"  // IndexPair
