@@ -1,5 +1,5 @@
-// Pins that hold back together (docs/collisions.md, "Pins"): the pinned points joined by the cloth's edges
-// form a group, the handle an artist pins (a twisted sheet's edge, a waistband). Where its bounds hold a
+// Pins that hold back together (docs/collisions.md, "Pin groups"): the pins joined by the cloth's edges form
+// a group, the handle an artist pins (a twisted sheet's edge, a waistband). Where its bounds hold a
 // pin short of its target, every pin of the group takes the same fraction of its move, so a jammed handle
 // stalls as a whole, keeping its shape, instead of each pin trailing by its own amount and the cloth between
 // them torn apart.
@@ -14,7 +14,8 @@ struct PinGroups {
   int count = 0;
 };
 
-// `pinned[i]`: point i does not move by itself (w = 0). Groups are numbered by their lowest point.
+// `pinned[i]`: point i is a pin (the collision stage passes those that follow an animation). Groups are
+// numbered by their lowest point.
 PinGroups pin_groups(const std::vector<std::array<int, 3>>& triangles, const std::vector<char>& pinned);
 
 }  // namespace weft
