@@ -72,8 +72,7 @@ def schedules(families, chosen, named):
     schedule in `named`, {name: (substeps, iterations, passes)} as `weft info` gives them (scene/schedules.hpp);
     `chebyshev` and `paper-chebyshev` are `iterations` and `paper` with Chebyshev acceleration at 0.95 (the
     default; the `-90` families at 0.9), `coarse` and `paper-coarse` the same with COARSE_LEVELS coarse
-    levels; every other family runs
-    plain Gauss-Seidel (`--set chebyshev_rho=0`), as does the reference."""
+    levels; every other family runs plain Gauss-Seidel (`--set chebyshev_rho=0`), as does the reference."""
     out = []
     for fam in chosen:
         for v in (named if fam in PAPER_FAMILIES else families.get(fam, [])):
