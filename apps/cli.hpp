@@ -4,9 +4,11 @@
 #include "scene/scene.hpp"
 
 #include <CLI/CLI.hpp>
+#include <array>
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace weft::cli {
 
@@ -46,6 +48,14 @@ void apply_tethers(const std::string& value, real& tether_stretch);
 // Prints `weft: warning: SCENE: ...` on stderr for each cloth piece too thick for its triangles
 // (thickness_warnings, scene/scene.hpp); the run goes on.
 void warn_about_thickness(const Scene& s);
+
+// The cloth's triangle pairs (i < j, sorted) that intersect at its starting positions (apps/starting_state.cpp).
+std::vector<std::array<int, 2>> starting_intersections(Backend b, const Scene& s);
+// "triangles I (points a b c) and J (points d e f)", for messages.
+std::string describe_triangle_pair(const Scene& s, const std::array<int, 2>& p);
+// Prints `weft: warning: SCENE: the cloth starts with N intersecting triangle pairs ...` on stderr when the
+// scene's cloth, with self collision on, starts crossed; the run goes on.
+void warn_about_starting_state(Backend b, const Scene& s);
 
 // The work a subcommand does once parsing is done; returns the exit code.
 using Action = std::function<int()>;

@@ -109,6 +109,7 @@ int bench(const GlobalOptions& g, const Options& o) {
   apply_ccd_span(o.ccd_span, scene.settings.collision.ccd_span);
   apply_tethers(o.tethers, scene.settings.tether_stretch);
   warn_about_thickness(scene);
+  warn_about_starting_state(b, scene);
   Options opt = o;
   if (opt.warmup < 0) opt.warmup = o.schedules == "paper" ? 16 : 2;
   std::vector<std::string> schedules;

@@ -185,6 +185,7 @@ int run_scene(const GlobalOptions& g, const RunOptions& o) {
   if (geo)
     for (const std::string& w : geo->warnings()) std::cerr << "weft: warning: " << w << "\n";
   warn_about_thickness(scene);
+  if (!o.resume) warn_about_starting_state(b, scene);  // a resumed run starts from its cache's last frame
   if (o.clean) {  // the solvability check (docs/solvability.md) replaces the colliders by cleaned ones
     const BodyCleaning c = clean_body(b, scene);
     scene.colliders = c.colliders;

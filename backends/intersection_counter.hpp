@@ -17,6 +17,8 @@ class IntersectionCounter {
   // Pairs of triangles that intersect at positions x (adjacent pairs excluded). Throws InputError naming the
   // mesh when x fails the checks a scene's cloth passes (validate_mesh, scene/mesh_checks.hpp).
   virtual long count(const std::vector<Vec3>& x) = 0;
+  // The intersecting pairs (i < j) themselves, sorted; checked as count() checks x.
+  virtual std::vector<std::array<int, 2>> pairs(const std::vector<Vec3>& x) = 0;
 };
 
 // `name` is the mesh's, for messages. Throws std::runtime_error when `b` is not compiled in.

@@ -15,6 +15,10 @@ class IntersectionCounterOn final : public IntersectionCounter {
     validate_mesh(name_, x, tris_);
     return mesh_.count(x);
   }
+  std::vector<std::array<int, 2>> pairs(const std::vector<Vec3>& x) override {
+    validate_mesh(name_, x, tris_);
+    return mesh_.pairs(x);
+  }
 
  private:
   std::string name_;

@@ -58,7 +58,8 @@ struct BodyCleaning {
   }
 };
 
-// One line: frames, points moved, largest displacement, violations left, clean or not.
-std::string cleaning_summary(const BodyCleaning& c);
+// One line: frames, points moved, largest displacement, violations left, clean or not. With
+// `cloth_pairs` > 0 (the cloth's triangle pairs that intersect at its start), those too, and not clean.
+std::string cleaning_summary(const BodyCleaning& c, long cloth_pairs = 0);
 
 }  // namespace weft

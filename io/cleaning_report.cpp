@@ -7,7 +7,7 @@
 namespace weft::io {
 
 void write_cleaning_report(const std::string& path, const std::string& scene, const CleaningSettings& settings,
-                           const BodyCleaning& result) {
+                           const BodyCleaning& result, const std::vector<std::array<int, 2>>& cloth_pairs) {
   nlohmann::json frames = nlohmann::json::array();
   for (const FrameCleaning& f : result.frames)
     frames.push_back({{"frame", f.frame},
@@ -35,8 +35,9 @@ void write_cleaning_report(const std::string& path, const std::string& scene, co
       {"points_moved", result.points_moved()},
       {"max_displacement", result.max_displacement()},
       {"violations_left", result.violations_left()},
-      {"clean", result.clean()},
-      {"summary", cleaning_summary(result)}};
+      {"cloth_intersections_at_start", cloth_pairs},
+      {"clean", result.clean() && cloth_pairs.empty()},
+      {"summary", cleaning_summary(result, long(cloth_pairs.size()))}};
   write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 }
 

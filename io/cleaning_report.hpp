@@ -3,12 +3,15 @@
 #pragma once
 #include "collision/body_cleaning_result.hpp"
 
+#include <array>
 #include <string>
+#include <vector>
 
 namespace weft::io {
 
-// Written under a temporary name and renamed into place; I/O failures throw std::system_error.
+// `cloth_pairs`: the cloth's triangle pairs that intersect at its start (weft check). Written under a
+// temporary name and renamed into place; I/O failures throw std::system_error.
 void write_cleaning_report(const std::string& path, const std::string& scene, const CleaningSettings& settings,
-                           const BodyCleaning& result);
+                           const BodyCleaning& result, const std::vector<std::array<int, 2>>& cloth_pairs = {});
 
 }  // namespace weft::io

@@ -1,5 +1,6 @@
 // Commands that read what a run left: `weft compare` (bits or ULPs between two caches), `weft info` (a scene
-// or cache file, or this build and its named schedules), `weft check-intersections` (a mesh).
+// or cache file, or this build and its named schedules), `weft check-intersections` (a mesh), `weft check` (cloth
+// that starts crossed).
 #include "io/builtin_scenes.hpp"
 #include "io/cache_file.hpp"
 #include "io/scene_file.hpp"
@@ -98,6 +99,38 @@ TEST(WEFT_TEST_SUITE, cli_check_intersections_counts_a_static_obj_mesh) {
   std::ofstream(dir.file("bad.obj")) << "v 0 0 0\nf 1 2 3\n";
   EXPECT_NE(weft("check-intersections " + dir.file("bad.obj")), 0);
   EXPECT_NE(weft.output.find("bad.obj"), std::string::npos) << weft.output;
+}
+
+// Two sheets built through each other: `weft check` names the crossed pairs and fails, `weft run` warns and
+// runs (with self collision; without it the sheets may pass through each other and nothing is said).
+TEST(WEFT_TEST_SUITE, cli_check_lists_cloth_that_starts_crossed) {
+  WEFT_NEED_CLI();
+  const ScratchDir dir("cli_check_crossed");
+  Cli weft(dir);
+  const std::string scene = dir.write("crossed.json", R"({
+    "settings": {"frames": [1, 2], "substeps": 2, "iterations": 4},
+    "cloth": [
+      {"generator": "grid", "res": [4, 4], "origin": [-0.5, 1, -0.5], "u": [1, 0, 0], "v": [0, 0, 1]},
+      {"generator": "grid", "res": [4, 4], "origin": [-0.45, 0.5, 0.01], "u": [1, 0, 0], "v": [0, 1, 0]}
+    ]})");
+  EXPECT_EQ(weft("check " + scene), 1) << weft.output;
+  EXPECT_NE(weft.output.find("the cloth starts with 26 intersecting triangle pairs\n"
+                             "  triangles 16 (points 10 11 16) and 40 (points 30 31 35)\n"),
+            std::string::npos) << weft.output;
+  EXPECT_NE(weft.output.find("... and 6 more"), std::string::npos) << weft.output;
+  EXPECT_NE(weft.output.find("26 cloth triangle pairs intersecting at the start: NOT clean"), std::string::npos)
+      << weft.output;
+  ASSERT_EQ(weft("run " + scene + " --quiet"), 0) << weft.output;
+  EXPECT_NE(weft.output.find("warning: " + scene + ": the cloth starts with 26 intersecting triangle pairs, first "
+                             "triangles 16 (points 10 11 16) and 40 (points 30 31 35)"),
+            std::string::npos) << weft.output;
+  ASSERT_EQ(weft("run " + scene + " --quiet --self-collision off"), 0) << weft.output;
+  EXPECT_EQ(weft.output.find("starts with"), std::string::npos) << weft.output;
+  // Untangled, the same sheets start clean.
+  const std::string apart = dir.write("apart.json", R"({
+    "cloth": [{"generator": "grid", "res": [4, 4], "origin": [-0.5, 1, -0.5], "u": [1, 0, 0], "v": [0, 0, 1]}]})");
+  EXPECT_EQ(weft("check " + apart), 0) << weft.output;
+  EXPECT_NE(weft.output.find("the cloth starts with 0 intersecting triangle pairs"), std::string::npos) << weft.output;
 }
 
 }  // namespace
