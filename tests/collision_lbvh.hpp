@@ -370,6 +370,35 @@ TEST(WEFT_TEST_SUITE, lbvh_output_buffer_grows_and_is_reused) {
   EXPECT_EQ(pairs.label(), "pairs");
 }
 
+// Keeps about one pair in 97.
+struct KeepSumMultipleOf97 {
+  KOKKOS_INLINE_FUNCTION bool operator()(int a, int b) const { return (a + b) % 97 == 0; }
+};
+
+// A self query after another on the same tree walks once, into slots sized from the last query's counts;
+// leaves that find more than their slots hold walk again. Either way the pairs and their order are those
+// of a first query.
+TEST(WEFT_TEST_SUITE, lbvh_self_query_after_another_finds_the_same_pairs) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  using Mem = Exec::memory_space;
+  const Soup s = random_soup(700, 7);
+  weft::Lbvh<Exec> bvh;
+  bvh.build(device_boxes<Exec>(s));
+  const auto leaves = weft::test::to_host(bvh.leaf_primitives());
+  const auto all = brute_self(host_boxes(s), leaves, weft::KeepAllPairs{});
+  const auto sparse = brute_self(host_boxes(s), leaves, KeepSumMultipleOf97{});
+  ASSERT_GT(all.size(), 8 * sparse.size() + 100);
+  Kokkos::View<IndexPair*, Mem> pairs;
+  long count = bvh.query_self(KeepSumMultipleOf97{}, pairs);  // small counts: the next query overflows
+  expect_pairs<Exec>(pairs, count, sparse, "sparse first");
+  count = bvh.query_self(weft::KeepAllPairs{}, pairs);
+  expect_pairs<Exec>(pairs, count, all, "all after sparse");
+  count = bvh.query_self(weft::KeepAllPairs{}, pairs);  // room for every leaf now
+  expect_pairs<Exec>(pairs, count, all, "all again");
+  count = bvh.query_self(DropSumMultipleOf3{}, pairs);
+  expect_pairs<Exec>(pairs, count, brute_self(host_boxes(s), leaves, DropSumMultipleOf3{}), "filtered after all");
+}
+
 // All boxes identical: every code is equal, the index bits alone shape the tree. Each query meets every
 // leaf; the predicate keeps a sparse, known subset.
 struct SumMultipleOf997 {
