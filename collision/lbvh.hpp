@@ -587,8 +587,9 @@ class Lbvh {
     lbvh_detail::reserve(overflow_, m, "weft::lbvh_overflow");
     Kokkos::parallel_for("weft::lbvh_self_capacity", Kokkos::RangePolicy<Exec>(exec_, 0, m),
                          lbvh_detail::FillCapacity<Mem>{primitive_, primitive_counts_, slots_});
-    const long staged = exclusive_scan(exec_, Kokkos::subview(slots_, range), slots_);
-    lbvh_detail::reserve(staging_, staged, "weft::lbvh_staging");
+    // The capacities sum to 2 last_self_total_ + 8 m: no total to read back.
+    exclusive_scan_on_device(exec_, Kokkos::subview(slots_, range), slots_);
+    lbvh_detail::reserve(staging_, 2 * last_self_total_ + 8 * m, "weft::lbvh_staging");
     const lbvh_detail::PairQuery<Mem, Pred, true> q{nodes(), BoxView(), pred};
     Kokkos::parallel_for("weft::lbvh_self_walk", Kokkos::RangePolicy<Exec>(exec_, 0, m),
                          lbvh_detail::PairCountFill<Mem, Pred>{q, slots_, leaf_counts_, primitive_counts_, overflow_,

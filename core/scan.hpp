@@ -26,4 +26,12 @@ typename OutView::non_const_value_type exclusive_scan(const Exec& exec, const In
   return total;
 }
 
+// out[i] = sum of in[0..i), without reading the total back: for callers that know it already.
+template <class Exec, class InView, class OutView>
+void exclusive_scan_on_device(const Exec& exec, const InView& in, const OutView& out) {
+  using T = typename OutView::non_const_value_type;
+  Kokkos::parallel_scan("weft::exclusive_scan", Kokkos::RangePolicy<Exec>(exec, 0, static_cast<long>(in.extent(0))),
+                        ExclusiveScan<InView, OutView, T>{in, out});
+}
+
 }  // namespace weft
