@@ -52,7 +52,8 @@ void print_settings(const SolverSettings& s, bool fem_rows = false) {
             << "  contact model " << contact_model_name(c.contact_model);
   if (c.contact_model == ContactModel::Proximity)
     std::cout << " (early passes at " << c.early_pass_fraction << " of the points cut back, at most "
-              << c.max_early_passes << " a substep; pair refresh " << (c.pair_refresh ? "on" : "off")
+              << c.max_early_passes << " a substep, " << c.max_collider_early_passes
+              << " while a collider pushes; pair refresh " << (c.pair_refresh ? "on" : "off")
               << "; nearest margins " << (c.nearest_margins ? "on" : "off") << "; predicted reference "
               << (c.predicted_reference ? "on" : "off") << "; still tolerance " << c.still_tolerance << ")";
   const char* rows = c.merge_contacts ? " (contacts on the same points merged)" : " (every contact a row)";

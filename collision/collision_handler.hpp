@@ -216,15 +216,20 @@ class CollisionHandler final : public CollisionStage<Exec> {
   }
 
   // Proximity: a query again before the next sweep when more than early_pass_fraction of the points that
-  // move were cut back by the last truncation (reads one counter), at most max_early_passes a substep.
+  // move were cut back by the last truncation (reads one sum back), at most max_early_passes a substep; or
+  // while that many of them have a collider within their contact reach that moves farther than that reach
+  // over the substep (pushing them), up to max_collider_early_passes.
+  // A query lets a pair that cannot part close by another 2 gamma of its distance: where cloth jams, more
+  // queries hold it tighter, where a point pushed by a fast collider needs them to keep ahead of it.
   bool wants_pass(const SolverState<Exec>& s) override {
     if (!proximity_) return false;
-    const long cut = bounds_->cut_count(s.exec) + held_;
-    stats_.points_cut_back += cut - held_;
-    held_ = 0;
-    if (early_in_substep_ >= settings_.max_early_passes ||
-        !(real(cut) > settings_.early_pass_fraction * real(bounds_->movable())))
-      return false;
+    const auto counts = bounds_->cut_counts(s.exec);
+    stats_.points_cut_back += counts.all;
+    const real many = settings_.early_pass_fraction * real(bounds_->movable());
+    const bool cut = early_in_substep_ < settings_.max_early_passes && real(counts.all + held_.all) > many;
+    const bool pushed = early_in_substep_ < settings_.max_collider_early_passes && real(counts.pushed + held_.pushed) > many;
+    held_ = {0, 0};
+    if (!cut && !pushed) return false;
     ++early_in_substep_;
     ++stats_.early_passes;
     early_next_ = true;
@@ -338,8 +343,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
       // The prediction (or what the last query left of it) cut back to the new bounds; the points still
       // held short ask for an early pass at the next check.
       b.truncate_prediction(s.exec, s.x, s.w);
-      held_ = b.cut_count(s.exec);
-      stats_.points_cut_back += held_;
+      held_ = b.cut_counts(s.exec);
+      stats_.points_cut_back += held_.all;
     });
     ncontacts_ = n;
     jacobi_run_.contacts_changed();
@@ -409,7 +414,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
   bool profile_ = false, jacobi_ = false, per_pass_ = false;
   bool proximity_ = false, build_ = true;
   int passes_ = 1, pass_in_substep_ = 0, early_in_substep_ = 0;
-  long held_ = 0;  // points the last query's truncation held short of their prediction
+  // Points the last query's truncation held short of their prediction (and of them, pushed by a collider).
+  typename DisplacementBounds<Exec>::CutCounts held_{0, 0};
   long nself_pairs_ = 0;  // proximity: self pairs of the last full query (in pairs_)
   long nself_contacts_ = 0;  // proximity: self contacts of the last pass that measured them (contacts_[0, n))
   bool early_next_ = false;  // proximity: wants_pass asked for the next pass

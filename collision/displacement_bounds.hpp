@@ -76,10 +76,12 @@ struct PreparePoints {
   Kokkos::View<Fixed*, Mem> dmin, qmin;
   Vec3 t;
   bool resume, pins, refresh, reference, sweep;
+  Kokkos::View<int*, Mem> touch;
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const bool free = pins || w(i) > 0;
     const Vec3 target = wanted_position(x, deficit, pending, w, i, resume);
     dmin(i) = kFar;
+    touch(i) = 0;
     if (!refresh) qmin(i) = kFar;  // a refresh keeps the last full query's margins
     // Margins grow with the whole wanted move, with references too: a point's bound beside its reference
     // is gamma Q, and a free sheet held to the floor's Q stretched twice as far (the 100K hanging sheet's
@@ -227,6 +229,9 @@ struct PairDistances {
   Kokkos::View<const Fixed*, Mem> qmin;
   Fixed past = 0;
   bool culled = false;  // the pairs are those measures() kept (on the device): no test left to run
+  // Empty, or per point 1 once a collider pair is within its contact reach and the collider moves more than
+  // that reach over the substep (it pushes the point).
+  Kokkos::View<int*, Mem> touch;
 
   static constexpr real kCoherence = 0.5;  // a pair keeps its corners' references while D <= (1 - this) d
   KOKKOS_INLINE_FUNCTION Vec3 ref_move(const SideMesh<Mem>& S, int v) const {
@@ -235,6 +240,14 @@ struct PairDistances {
 
   KOKKOS_INLINE_FUNCTION real pinned_move(const SideMesh<Mem>& S, int v) const {
     return S.collider || pins || w(v) > 0 ? real(0) : norm(xend(v) - S.x(v));
+  }
+  // How far a collider feature's corners move over the substep (0 on the cloth's side).
+  template <int N>
+  KOKKOS_INLINE_FUNCTION static real collider_move(const SideMesh<Mem>& S, const int (&p)[N]) {
+    real m2 = 0;
+    if (S.collider)
+      for (int k = 0; k < N; ++k) m2 = max_(m2, norm2(S.x(p[k]) - S.xs(p[k])));
+    return sqrt_(m2);
   }
   KOKKOS_INLINE_FUNCTION void fold(const SideMesh<Mem>& S, int v, Fixed f) const {
     if (!S.collider && (pins || w(v) > 0)) Kokkos::atomic_fetch_min(&dmin(v), f);
@@ -262,7 +275,15 @@ struct PairDistances {
       return;
     }
     if (!(d < reach)) return;
-    if ((SA.collider || SB.collider) && d < contact) return;
+    if ((SA.collider || SB.collider) && d < contact) {
+      if (touch.extent(0) > 0 && (collider_move(SA, pa) > contact || collider_move(SB, pb) > contact)) {
+        for (int k = 0; k < NA; ++k)
+          if (!SA.collider) touch(pa[k]) = 1;
+        for (int k = 0; k < NB; ++k)
+          if (!SB.collider) touch(pb[k]) = 1;
+      }
+      return;
+    }
     real ma = 0, mb = 0;
     for (int k = 0; k < NA; ++k) ma = max_(ma, pinned_move(SA, pa[k]));
     for (int k = 0; k < NB; ++k) mb = max_(mb, pinned_move(SB, pb[k]));
@@ -468,6 +489,11 @@ struct PinShares {
   }
 };
 
+// A point cut back counts 1, and kPushed more while a moving collider is within its contact reach (pushing
+// it): one sum of the marks gives both counts.
+constexpr long kPushed = 1L << 32;
+KOKKOS_INLINE_FUNCTION long cut_mark(int touch) { return touch ? 1 + kPushed : 1; }
+
 // Per point (that moves: bounds of the others are far): cut its move from X0 + t back to its bound; counts the points cut back and keeps the largest
 // move wanted (the next query's margins grow to let it through). With `carry`, the part cut off is kept
 // as the point's deficit (the prediction's motion, handed on to the next query); first adds the deficit
@@ -480,7 +506,8 @@ struct Truncate {
   Kokkos::View<real*, Mem> want;
   Kokkos::View<Vec3*, Mem> deficit;  // a free point's move still to hand on; a pinned point's target
   Kokkos::View<int*, Mem> pending;   // a pinned point still short of its target
-  Kokkos::View<int*, Mem> cut;       // per point: cut back by this truncation
+  Kokkos::View<long*, Mem> cut;       // per point: cut back by this truncation (cut_mark)
+  Kokkos::View<const int*, Mem> touch;  // per point: a moving collider within its contact reach at the query
   Kokkos::View<const Vec3*, Mem> ref;  // with `reference`, the point's reference move beside t
   Vec3 t;
   bool carry, resume, reference;
@@ -501,7 +528,7 @@ struct Truncate {
       x(i) = base + from_fixed(f) * d;
       deficit(i) = xi;
       pending(i) = 1;
-      cut(i) = 1;
+      cut(i) = cut_mark(touch(i));
       return;
     }
     if (!(l2 > b * b)) {
@@ -521,7 +548,7 @@ struct Truncate {
       deficit(i) = pinned ? xi : xi - kept;
       pending(i) = pinned ? 1 : 0;
     }
-    cut(i) = 1;
+    cut(i) = cut_mark(touch(i));
   }
 };
 
@@ -607,7 +634,7 @@ class DisplacementBounds {
         scratch_("weft::bounds_scratch", points), dmin_("weft::bounds_dmin", points),
         qmin_("weft::bounds_qmin", points), deficit_("weft::bounds_deficit", points), pending_("weft::bounds_pending", points),
         cut_("weft::bounds_cut", points), flag_("weft::bounds_flag", points), xq_("weft::bounds_xq", points),
-        sum_("weft::bounds_sum"), near_("weft::bounds_near", points),
+        sum_("weft::bounds_sum"), near_("weft::bounds_near", points), touch_("weft::bounds_touch", points),
         ref_("weft::bounds_ref", s.predicted_reference ? points : 0),
         anchor_("weft::bounds_anchor", s.predicted_reference ? points : 0) {
     Kokkos::deep_copy(near_, bounds_detail::from_fixed(bounds_detail::kFar));
@@ -680,7 +707,7 @@ class DisplacementBounds {
     Kokkos::parallel_for("weft::bounds_prepare", Kokkos::RangePolicy<Exec>(exec, 0, n),
                          PreparePoints<Mem>{x, x0_, deficit_, pending_, w, want_, xrel_, xb_, ref_, anchor_, dmin_,
                                             qmin_, t_, resume_, s_.bound_pins, refresh_, s_.predicted_reference,
-                                            sweep_});
+                                            sweep_, touch_});
     still_ = refresh_ && measured_ && s_.still_distance > 0 && still_moves(exec, x, w) <= s_.still_distance;
     if (still_)
       Kokkos::parallel_for("weft::bounds_still", Kokkos::RangePolicy<Exec>(exec, 0, n),
@@ -818,7 +845,15 @@ class DisplacementBounds {
 
   // Points the last truncation cut back (an integer sum, read back). One counter bumped by every thread
   // instead cost 10 ms a truncation on the H100 where most points were cut back.
-  long cut_count(const Exec& exec) const { return sum_counts(exec, cut_); }
+  long cut_count(const Exec& exec) const { return cut_counts(exec).all; }
+  // The same, and how many of them had a moving collider within their contact reach.
+  struct CutCounts {
+    long all, pushed;
+  };
+  CutCounts cut_counts(const Exec& exec) const {
+    const long s = sum_counts(exec, cut_);
+    return {s & (bounds_detail::kPushed - 1), s / bounds_detail::kPushed};
+  }
 
  private:
   // R: the largest StillMoves since the last measured pass (an exact maximum, read back once).
@@ -842,7 +877,7 @@ class DisplacementBounds {
                                           s_.predicted_reference});
     }
     Kokkos::parallel_for("weft::bounds_truncate", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
-                         Truncate<Mem>{x, x0_, w, bound_, want_, deficit_, pending_, cut_, ref_, t_, carry, resume,
+                         Truncate<Mem>{x, x0_, w, bound_, want_, deficit_, pending_, cut_, touch_, ref_, t_, carry, resume,
                                        s_.predicted_reference, groups ? pin_group_ : View<int*>(), pin_share_});
   }
 
@@ -851,6 +886,7 @@ class DisplacementBounds {
                                               const View<real*>& w, const View<uint32_t*>& hits,
                                               const NarrowSettings& ns) const {
     bounds_detail::PairDistances<Mem> pd{A, B, pairs, xend, w, margin_, dmin_, s_.detect_scale, s_.bound_pins, hits, ns};
+    pd.touch = touch_;
     if (s_.bound_pins && !s_.nearest_margins) {
       // At a still pass d - 4R stands for a nearest distance d, R at most the still distance (StillDistances).
       pd.qmin = qmin_;
@@ -868,7 +904,9 @@ class DisplacementBounds {
   View<bounds_detail::Fixed*> dmin_, qmin_;
   View<Vec3*> deficit_;  // per point, the prediction's motion still to hand on (pinned: its target)
   View<int*> pending_;   // pinned points short of their target
-  View<int*> cut_, flag_;  // flag_: per point, for counts
+  View<long*> cut_;        // per point, cut_mark() where the last truncation cut it back, else 0
+  View<int*> flag_;        // per point, for counts
+  View<int*> touch_;       // per point, 1 while a moving collider of this query is within its contact reach
   View<Vec3*> xq_;        // X0 of the last full query
   View<Vec3> sum_;        // the wanted moves' sum, for the common translation
   View<real*> near_;      // per point, its nearest feature at the last query (far before the first)

@@ -60,6 +60,7 @@ const Setting<int> kIntSettings[] = {
     own("smoothing_iterations", &SolverSettings::smoothing_iterations),
     collision("impact_zone_sweeps", &CollisionSettings::impact_zone_sweeps),
     collision("max_early_passes", &CollisionSettings::max_early_passes),
+    collision("max_collider_early_passes", &CollisionSettings::max_collider_early_passes),
     own("chebyshev_delay", &SolverSettings::chebyshev_delay),
     own("stretch_limits", &SolverSettings::stretch_limits),
     own("coarse_levels", &SolverSettings::coarse_levels),
@@ -388,6 +389,11 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
     const char* name = m.name;
     if (std::strcmp(name, "max_early_passes") == 0 && !h5::has_attribute(f, group, name)) continue;
     if (std::strcmp(name, "chebyshev_delay") == 0 && !h5::has_attribute(f, group, name)) continue;
+    // Absent in files written before it existed: max_early_passes alone decided.
+    if (std::strcmp(name, "max_collider_early_passes") == 0 && !h5::has_attribute(f, group, name)) {
+      s.collision.max_collider_early_passes = 0;
+      continue;
+    }
     // Absent in files written before stretch limits: none.
     if (std::strcmp(name, "stretch_limits") == 0 && !h5::has_attribute(f, group, name)) continue;
     // Absent in files written before coarse levels: none.

@@ -137,6 +137,8 @@ const std::vector<Entry>& entries() {
        [](Scene& s, const std::string& v) { s.settings.collision.early_pass_fraction = to_real(v); }},
       {"max_early_passes", "integer >= 0: early passes per substep at most",
        [](Scene& s, const std::string& v) { s.settings.collision.max_early_passes = to_int(v, 0); }},
+      {"max_collider_early_passes", "integer >= 0: early passes per substep at most while points a collider pushes are cut back",
+       [](Scene& s, const std::string& v) { s.settings.collision.max_collider_early_passes = to_int(v, 0); }},
       {"impact_zone_smoothing", "on | off: smoothing of velocities in unresolved contacts (both models)",
        [](Scene& s, const std::string& v) { s.settings.collision.impact_zone_smoothing = to_bool(v); }},
       {"collision_failsafe", "on | off (ccd model)",

@@ -414,8 +414,9 @@ TEST(WEFT_TEST_SUITE, pin_groups_join_pins_along_the_cloth_edges) {
 
 // The twist winds the sheet into a rope: the contacts never converge in the schedule's iterations, yet
 // nothing crosses and nothing is moved back. Pins reach their targets within their bounds like every other
-// point, so they sit exactly on their animation until the rope jams next to them (from frame 35 at this
-// coarse size), and then trail it rather than drive the rope through itself. Each pinned edge is one pin
+// point, so they sit exactly on their animation until the rope jams next to them (from frame 28 at this
+// coarse size with one early pass a substep, from frame 35 with four), and then trail it rather than drive
+// the rope through itself. Each pinned edge is one pin
 // group: held back, it stalls as a whole and stays straight, as its animation keeps it.
 TEST(WEFT_TEST_SUITE, proximity_twist_never_crosses_and_pins_follow_until_it_jams) {
   using Exec = WEFT_TEST_EXECSPACE;
@@ -435,7 +436,7 @@ TEST(WEFT_TEST_SUITE, proximity_twist_never_crosses_and_pins_follow_until_it_jam
     const weft::FrameStats fs = sim.step_frame();
     ASSERT_EQ(fs.non_finite, 0);
     ASSERT_EQ(fs.collision.failsafe_points, 0);
-    if (fs.frame <= 34) ASSERT_EQ(fs.max_pin_lag, 0.0) << "frame " << fs.frame;
+    if (fs.frame <= 27) ASSERT_EQ(fs.max_pin_lag, 0.0) << "frame " << fs.frame;
     lag = std::max(lag, fs.max_pin_lag);
     passes += fs.schedule.collision_passes;
     if (f % 3 == 2 || f >= 33) ASSERT_EQ(sim.intersections(), 0) << "frame " << fs.frame;
