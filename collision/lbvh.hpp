@@ -378,6 +378,8 @@ struct PairFill {
 
 // A self query's capacity for leaf k from its count at the last self query.
 KOKKOS_INLINE_FUNCTION long fill_capacity(long last) { return 2 * last + 8; }
+// The capacities of m leaves whose last counts sum to `total`: fill_capacity summed.
+inline long fill_capacity_sum(long total, long m) { return 2 * total + 8 * m; }
 
 // Per leaf: its primitive's pair count, kept by primitive for the next self query (the tree is rebuilt
 // each frame, and a primitive's count changes little from query to query).
@@ -547,7 +549,7 @@ class Lbvh {
   template <class Pred, bool Self>
   long pairs_of(long m, BoxView queries, const Pred& pred, PairView& pairs) {
     if constexpr (Self)
-      if (m == last_self_ && 2 * last_self_total_ + 8 * m <= kOneWalkPairs)
+      if (m == last_self_ && lbvh_detail::fill_capacity_sum(last_self_total_, m) <= kOneWalkPairs)
         return self_pairs_in_one_walk(m, pred, pairs);
     lbvh_detail::reserve(offsets_, m, "weft::lbvh_offsets");
     const lbvh_detail::PairQuery<Mem, Pred, Self> q{nodes(), queries, pred};
@@ -587,9 +589,9 @@ class Lbvh {
     lbvh_detail::reserve(overflow_, m, "weft::lbvh_overflow");
     Kokkos::parallel_for("weft::lbvh_self_capacity", Kokkos::RangePolicy<Exec>(exec_, 0, m),
                          lbvh_detail::FillCapacity<Mem>{primitive_, primitive_counts_, slots_});
-    // The capacities sum to 2 last_self_total_ + 8 m: no total to read back.
+    // The capacities' sum is known: no total to read back.
     exclusive_scan_on_device(exec_, Kokkos::subview(slots_, range), slots_);
-    lbvh_detail::reserve(staging_, 2 * last_self_total_ + 8 * m, "weft::lbvh_staging");
+    lbvh_detail::reserve(staging_, lbvh_detail::fill_capacity_sum(last_self_total_, m), "weft::lbvh_staging");
     const lbvh_detail::PairQuery<Mem, Pred, true> q{nodes(), BoxView(), pred};
     Kokkos::parallel_for("weft::lbvh_self_walk", Kokkos::RangePolicy<Exec>(exec_, 0, m),
                          lbvh_detail::PairCountFill<Mem, Pred>{q, slots_, leaf_counts_, primitive_counts_, overflow_,
