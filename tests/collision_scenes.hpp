@@ -175,6 +175,27 @@ TEST(WEFT_TEST_SUITE, proximity_fast_collider_never_jumps_past_the_cloth_with_ch
   expect_fast_collider_never_jumps_past_the_cloth(0.95);
 }
 
+// Early passes for points a collider pushes (max_collider_early_passes) run only where the collider moves:
+// the still sphere under drape-sphere adds none (the same bits as without them), the 10 m/s box adds some.
+TEST(WEFT_TEST_SUITE, collider_early_passes_run_only_where_a_collider_moves) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  weft::Scene drape = weft::io::make_builtin_scene("drape-sphere", {8});
+  uint64_t with = 0, without = 0;
+  weft::test::run_frames<Exec>(drape, 12, &with);
+  drape.settings.collision.max_collider_early_passes = 0;
+  weft::test::run_frames<Exec>(drape, 12, &without);
+  EXPECT_EQ(with, without);
+  const auto early_passes = [](weft::Scene s, int cap) {
+    s.settings.collision.max_collider_early_passes = cap;
+    weft::SimulationOn<Exec> sim(s);
+    long n = 0;
+    for (int f = 0; f < 6; ++f) n += sim.step_frame().collision.early_passes;
+    return n;
+  };
+  const weft::Scene box = weft::io::make_builtin_scene("fast-collider", {10});
+  EXPECT_GT(early_passes(box, 4), early_passes(box, 0));
+}
+
 real settled_rms_speed(bool smoothing, weft::ContactSolver solver = weft::ContactSolver::GaussSeidel,
                        weft::CcdSpan span = weft::CcdSpan::Pass, weft::ContactModel model = weft::ContactModel::Ccd) {
   using Exec = WEFT_TEST_EXECSPACE;
