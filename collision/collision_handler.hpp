@@ -129,6 +129,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
     next.impact_zone_points = stats_.impact_zone_points;
     stats_ = next;
   }
+  void end_frame(const SolverState<Exec>& s) override {
+    if (proximity_) stats_.points_cut_back = bounds_->take_cut_tally(s.exec);
+  }
   CollisionStats frame_stats() const override { return stats_; }
 
   // The trees are built once per frame; every pass refits them first.
@@ -221,13 +224,20 @@ class CollisionHandler final : public CollisionStage<Exec> {
   // over the substep (pushing them), up to max_collider_early_passes.
   // A query lets a pair that cannot part close by another 2 gamma of its distance: where cloth jams, more
   // queries hold it tighter, where a point pushed by a fast collider needs them to keep ahead of it.
+  // Where no early pass can follow (the substep's budget spent, and no collider pair at the last query to
+  // push a point), nothing is read back: the same decisions with the device left to run ahead.
   bool wants_pass(const SolverState<Exec>& s) override {
     if (!proximity_) return false;
+    const bool cut_open = early_in_substep_ < settings_.max_early_passes;
+    const bool push_open = early_in_substep_ < settings_.max_collider_early_passes && collider_near_;
+    if (!cut_open && !push_open) {
+      held_ = {0, 0};
+      return false;
+    }
     const auto counts = bounds_->cut_counts(s.exec);
-    stats_.points_cut_back += counts.all;
     const real many = settings_.early_pass_fraction * real(bounds_->movable());
-    const bool cut = early_in_substep_ < settings_.max_early_passes && real(counts.all + held_.all) > many;
-    const bool pushed = early_in_substep_ < settings_.max_collider_early_passes && real(counts.pushed + held_.pushed) > many;
+    const bool cut = cut_open && real(counts.all + held_.all) > many;
+    const bool pushed = push_open && real(counts.pushed + held_.pushed) > many;
     held_ = {0, 0};
     if (!cut && !pushed) return false;
     ++early_in_substep_;
@@ -259,6 +269,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     DisplacementBounds<Exec>& b = *bounds_;
     SideMesh<Mem> cloth = cloth_side(s), collider = collider_side(s);
     const bool colliders = collider_boxes_.extent(0) > 0;
+    collider_near_ = false;
     const View<Vec3*> from = first ? s.x_start : s.x;
     bool refresh = false;
     timed("weft::broad_phase", stats_.seconds_broad_phase, [&] {
@@ -330,6 +341,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
         swept_triangle_boxes(s.exec, View<const Vec3*>(b.x0()), View<const Vec3*>(b.end()),
                              View<const int* [3]>(cloth_tris_), b.margins(), swept_boxes_);
         npairs = collider_bvh_.query(View<const Aabb*>(swept_boxes_), KeepAllPairs{}, collider_pairs_);
+        collider_near_ = npairs > 0;
       });
       timed("weft::collider_narrow_phase", stats_.seconds_narrow_phase, [&] {
         SideMesh<Mem> there = cloth;
@@ -344,7 +356,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
       // held short ask for an early pass at the next check.
       b.truncate_prediction(s.exec, s.x, s.w);
       held_ = b.cut_counts(s.exec);
-      stats_.points_cut_back += held_.all;
     });
     ncontacts_ = n;
     jacobi_run_.contacts_changed();
@@ -419,6 +430,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   long nself_pairs_ = 0;  // proximity: self pairs of the last full query (in pairs_)
   long nself_contacts_ = 0;  // proximity: self contacts of the last pass that measured them (contacts_[0, n))
   bool early_next_ = false;  // proximity: wants_pass asked for the next pass
+  bool collider_near_ = false;  // proximity: the last pass had collider pairs (a collider may push points)
   BoundSettings bound_settings_;
   std::optional<DisplacementBounds<Exec>> bounds_;
   View<Vec3*> x_pass_;  // cloth positions at the previous pass of the substep (CcdSpan::Pass)

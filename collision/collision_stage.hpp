@@ -18,6 +18,7 @@ class CollisionStage {
   virtual void end_substep(const SolverState<Exec>& s, real h) = 0;  // after v = (x - x_start) / h
   // After project(): whether a pass should run before the next sweep, beside the scheduled ones.
   virtual bool wants_pass(const SolverState<Exec>&) { return false; }
+  virtual void end_frame(const SolverState<Exec>&) {}  // after the frame's last substep
   // The frame so far: sums since begin_frame(), the last pass's and substep's counts.
   virtual CollisionStats frame_stats() const = 0;
 };

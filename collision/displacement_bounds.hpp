@@ -507,6 +507,7 @@ struct Truncate {
   Kokkos::View<Vec3*, Mem> deficit;  // a free point's move still to hand on; a pinned point's target
   Kokkos::View<int*, Mem> pending;   // a pinned point still short of its target
   Kokkos::View<long*, Mem> cut;       // per point: cut back by this truncation (cut_mark)
+  Kokkos::View<long*, Mem> tally;     // per point: truncations that cut it back since the last take
   Kokkos::View<const int*, Mem> touch;  // per point: a moving collider within its contact reach at the query
   Kokkos::View<const Vec3*, Mem> ref;  // with `reference`, the point's reference move beside t
   Vec3 t;
@@ -529,6 +530,7 @@ struct Truncate {
       deficit(i) = xi;
       pending(i) = 1;
       cut(i) = cut_mark(touch(i));
+      ++tally(i);
       return;
     }
     if (!(l2 > b * b)) {
@@ -549,6 +551,7 @@ struct Truncate {
       pending(i) = pinned ? 1 : 0;
     }
     cut(i) = cut_mark(touch(i));
+    ++tally(i);
   }
 };
 
@@ -633,7 +636,7 @@ class DisplacementBounds {
         want_("weft::bounds_want", points), margin_("weft::bounds_margin", floor.extent(0)),
         scratch_("weft::bounds_scratch", points), dmin_("weft::bounds_dmin", points),
         qmin_("weft::bounds_qmin", points), deficit_("weft::bounds_deficit", points), pending_("weft::bounds_pending", points),
-        cut_("weft::bounds_cut", points), flag_("weft::bounds_flag", points), xq_("weft::bounds_xq", points),
+        cut_("weft::bounds_cut", points), tally_("weft::bounds_tally", points), flag_("weft::bounds_flag", points), xq_("weft::bounds_xq", points),
         sum_("weft::bounds_sum"), near_("weft::bounds_near", points), touch_("weft::bounds_touch", points),
         ref_("weft::bounds_ref", s.predicted_reference ? points : 0),
         anchor_("weft::bounds_anchor", s.predicted_reference ? points : 0) {
@@ -846,6 +849,13 @@ class DisplacementBounds {
   // Points the last truncation cut back (an integer sum, read back). One counter bumped by every thread
   // instead cost 10 ms a truncation on the H100 where most points were cut back.
   long cut_count(const Exec& exec) const { return cut_counts(exec).all; }
+  // Points cut back, summed over every truncation since the last call (one sum, read back), for the
+  // frame's statistics: the checks for an early pass read counts only while one could run.
+  long take_cut_tally(const Exec& exec) {
+    const long n = sum_counts(exec, tally_);
+    Kokkos::deep_copy(exec, tally_, 0L);
+    return n;
+  }
   // The same, and how many of them had a moving collider within their contact reach.
   struct CutCounts {
     long all, pushed;
@@ -877,7 +887,7 @@ class DisplacementBounds {
                                           s_.predicted_reference});
     }
     Kokkos::parallel_for("weft::bounds_truncate", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
-                         Truncate<Mem>{x, x0_, w, bound_, want_, deficit_, pending_, cut_, touch_, ref_, t_, carry, resume,
+                         Truncate<Mem>{x, x0_, w, bound_, want_, deficit_, pending_, cut_, tally_, touch_, ref_, t_, carry, resume,
                                        s_.predicted_reference, groups ? pin_group_ : View<int*>(), pin_share_});
   }
 
@@ -905,6 +915,7 @@ class DisplacementBounds {
   View<Vec3*> deficit_;  // per point, the prediction's motion still to hand on (pinned: its target)
   View<int*> pending_;   // pinned points short of their target
   View<long*> cut_;        // per point, cut_mark() where the last truncation cut it back, else 0
+  View<long*> tally_;      // per point, the truncations that cut it back since take_cut_tally()
   View<int*> flag_;        // per point, for counts
   View<int*> touch_;       // per point, 1 while a moving collider of this query is within its contact reach
   View<Vec3*> xq_;        // X0 of the last full query

@@ -99,6 +99,7 @@ class Solver {
     if (collision_) collision_->begin_frame();
     if (colliders_streamed_) Kokkos::deep_copy(exec_, collider_frame_start_, state_.collider_x);
     for (int s = 0; s < st_.substeps; ++s) substep(s);
+    if (collision_) collision_->end_frame(state_);
     ++frame_;
     exec_.fence();
     const double solve = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
