@@ -239,6 +239,12 @@ void check_self_and_cross(const Soup& s, const Soup& queries_soup, const std::st
   count = bvh.query_self(DropSumMultipleOf3{}, pairs);
   expect_pairs<Exec>(pairs, count, brute_self(hboxes, leaves, DropSumMultipleOf3{}), what + " self filtered");
   EXPECT_EQ(bvh.count_self(DropSumMultipleOf3{}), count) << what;
+  // Every leaf against every later one (the device's self query for small trees): the same pairs in order.
+  count = bvh.query_self_all_later(weft::KeepAllPairs{}, pairs);
+  expect_pairs<Exec>(pairs, count, brute_self(hboxes, leaves, weft::KeepAllPairs{}), what + " self, all later leaves");
+  count = bvh.query_self_all_later(DropSumMultipleOf3{}, pairs);
+  expect_pairs<Exec>(pairs, count, brute_self(hboxes, leaves, DropSumMultipleOf3{}),
+                     what + " self filtered, all later leaves");
 
   const auto qboxes = device_boxes<Exec>(queries_soup);
   const auto hq = host_boxes(queries_soup);
