@@ -187,10 +187,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     auto x = s.x, xs = s.x_start;
     auto w = s.w;
     auto cx = s.collider_x, cxs = s.collider_x_start;
-    if (proximity_) {
-      jacobi_run_.project(s.exec, c, ncontacts_, x, xs, w, cx, cxs);
-      return bounds_->truncate(s.exec, x, w);
-    }
+    if (proximity_) return jacobi_run_.project(s.exec, c, ncontacts_, x, xs, w, cx, cxs, bounds_->truncate_step(x, w));
     if (jacobi_) return jacobi_run_.project(s.exec, c, ncontacts_, x, xs, w, cx, cxs);
     for (size_t k = 0; k + 1 < offsets_.size(); ++k)
       Kokkos::parallel_for("weft::project_contacts", Kokkos::RangePolicy<Exec>(s.exec, offsets_[k], offsets_[k + 1]),

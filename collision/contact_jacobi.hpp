@@ -262,6 +262,22 @@ struct ApplyDeltas {
   }
 };
 
+// Nothing after a point's corrections.
+struct NoPointStep {
+  KOKKOS_INLINE_FUNCTION void operator()(long) const {}
+};
+
+// A point's corrections, then `then` on the point (the proximity model's cut back to its bound): one launch.
+template <class Mem, class Then>
+struct ApplyThen {
+  ApplyDeltas<Mem> apply;
+  Then then;
+  KOKKOS_INLINE_FUNCTION void operator()(long p) const {
+    apply(p);
+    then(p);
+  }
+};
+
 }  // namespace jacobi_detail
 
 template <class Exec>
@@ -277,12 +293,18 @@ class JacobiContacts {
   // Rows the last iterations ran over (after merging).
   long rows() const { return nrows_; }
 
-  // One Jacobi iteration over contacts [0, n).
+  // One Jacobi iteration over contacts [0, n), then then(p) for every point p in the same launch as the
+  // corrections (a step of each point's own, which so costs no launch of its own).
+  template <class Then = jacobi_detail::NoPointStep>
   void project(const Exec& exec, const Kokkos::View<Contact*, Mem>& c, long n, const Kokkos::View<Vec3*, Mem>& x,
                const Kokkos::View<Vec3*, Mem>& xs, const Kokkos::View<real*, Mem>& w,
-               const Kokkos::View<Vec3*, Mem>& cx, const Kokkos::View<Vec3*, Mem>& cxs) {
+               const Kokkos::View<Vec3*, Mem>& cx, const Kokkos::View<Vec3*, Mem>& cxs, const Then& then = Then{}) {
     using namespace jacobi_detail;
-    if (n == 0) return;
+    constexpr bool step = !std::is_same_v<Then, NoPointStep>;
+    if (n == 0) {
+      if (step) Kokkos::parallel_for("weft::bounds_truncate", Kokkos::RangePolicy<Exec>(exec, 0, long(x.extent(0))), then);
+      return;
+    }
     if (stale_) {
       build_rows(exec, c, n, w, xs, cxs, long(x.extent(0)), long(cx.extent(0)));
       stale_ = false;
@@ -291,7 +313,8 @@ class JacobiContacts {
     if (long(acc_.extent(0)) != points) acc_ = Kokkos::View<Fixed* [3], Mem>("weft::contact_sums", points);
     Kokkos::parallel_for("weft::contact_deltas", Kokkos::RangePolicy<Exec>(exec, 0, nrows_),
                          ContactDeltas<Mem>{rows_, x, cx, acc_});
-    Kokkos::parallel_for("weft::contact_apply", Kokkos::RangePolicy<Exec>(exec, 0, points), ApplyDeltas<Mem>{x, acc_});
+    Kokkos::parallel_for("weft::contact_apply", Kokkos::RangePolicy<Exec>(exec, 0, points),
+                         ApplyThen<Mem, Then>{ApplyDeltas<Mem>{x, acc_}, then});
   }
 
  private:

@@ -838,6 +838,11 @@ class DisplacementBounds {
 
   // Cuts every point back to its bound around X0 + t, marking the points cut back.
   void truncate(const Exec& exec, const View<Vec3*>& x, const View<real*>& w) { run_truncate(exec, x, w, false, false); }
+  // truncate() as a per-point step, for a kernel that moves each point first (the Jacobi contacts' apply).
+  bounds_detail::Truncate<Mem> truncate_step(const View<Vec3*>& x, const View<real*>& w) const {
+    return {x,    x0_,  w,    bound_, want_, deficit_, pending_, cut_, tally_, touch_, ref_, t_,
+            false, false, s_.predicted_reference, View<int*>(), pin_share_};
+  }
 
   // At a query: the prediction cut back (first query of a substep), or the deficit left by the last query
   // added and cut back again. The part cut off is kept for the next query: in XPBD, motion cut off and

@@ -226,12 +226,15 @@ class Solver {
         const real omega = chebyshev_omega(it);
         const bool saving = chebyshev_on() && it + 1 >= st_.chebyshev_delay;
         if (saving) {
-          Kokkos::parallel_for("weft::chebyshev_save", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
-                               kernels::ChebyshevSave<Mem, Vec3>{state_.x, cheb_xk_, cheb_xkm1_});
+          const long np = long(state_.x.extent(0)), nr = long(lambda_.extent(0));
+          const kernels::ChebyshevSave<Mem, Vec3> points{state_.x, cheb_xk_, cheb_xkm1_};
           // After a blend, the blend saved the multipliers already.
-          if (!(it > 0 && chebyshev_omega(it - 1) != 1))
-            Kokkos::parallel_for("weft::chebyshev_save_lambda", Kokkos::RangePolicy<Exec>(exec_, 0, lambda_.extent(0)),
-                                 kernels::ChebyshevSave<Mem, real>{lambda_, cheb_lk_, cheb_lkm1_});
+          if (it > 0 && chebyshev_omega(it - 1) != 1)
+            Kokkos::parallel_for("weft::chebyshev_save", Kokkos::RangePolicy<Exec>(exec_, 0, np), points);
+          else
+            Kokkos::parallel_for("weft::chebyshev_save", Kokkos::RangePolicy<Exec>(exec_, 0, std::max(np, nr)),
+                                 kernels::BothElementwise<kernels::ChebyshevSave<Mem, Vec3>, kernels::ChebyshevSave<Mem, real>>{
+                                     points, {lambda_, cheb_lk_, cheb_lkm1_}, np, nr});
         }
         gauss_seidel_sweep(h);
         // Tethers are limits, not targets: the blend must not leave a point past its tether.
@@ -239,11 +242,14 @@ class Solver {
         const bool keep = saving && cheb_xc_.extent(0) > 0;  // the points as this iteration leaves them
         const bool blend_keeps = omega != 1 && !tethers;      // the blend writes them, else a copy does
         if (omega != 1) {
-          Kokkos::parallel_for("weft::chebyshev_blend", Kokkos::RangePolicy<Exec>(exec_, 0, state_.x.extent(0)),
-                               kernels::ChebyshevBlend<Mem>{state_.x, cheb_xk_, cheb_xkm1_, cheb_xc_, state_.w, omega,
-                                                            keep && blend_keeps});
-          Kokkos::parallel_for("weft::chebyshev_blend_lambda", Kokkos::RangePolicy<Exec>(exec_, 0, lambda_.extent(0)),
-                               kernels::ChebyshevBlendLambda<Mem>{lambda_, cheb_lk_, cheb_lkm1_, omega});
+          // The points and the multipliers in one launch.
+          const long np = long(state_.x.extent(0)), nr = long(lambda_.extent(0));
+          Kokkos::parallel_for("weft::chebyshev_blend", Kokkos::RangePolicy<Exec>(exec_, 0, std::max(np, nr)),
+                               kernels::BothElementwise<kernels::ChebyshevBlend<Mem>, kernels::ChebyshevBlendLambda<Mem>>{
+                                   {state_.x, cheb_xk_, cheb_xkm1_, cheb_xc_, state_.w, omega, keep && blend_keeps},
+                                   {lambda_, cheb_lk_, cheb_lkm1_, omega},
+                                   np,
+                                   nr});
           if (tethers)
             Kokkos::parallel_for("weft::project_tethers", Kokkos::RangePolicy<Exec>(exec_, 0, tethers_.extent(0)),
                                  kernels::ProjectTethers<Mem>{tethers_, state_.x});

@@ -165,6 +165,19 @@ struct ChebyshevBlendLambda {
   }
 };
 
+// Two elementwise kernels in one launch, element i of each below its size: the points' and the
+// multipliers' Chebyshev saves or blends (each element's arithmetic as in its own kernel).
+template <class A, class B>
+struct BothElementwise {
+  A a;
+  B b;
+  long na, nb;
+  KOKKOS_INLINE_FUNCTION void operator()(long i) const {
+    if (i < na) a(i);
+    if (i < nb) b(i);
+  }
+};
+
 // Every tether at once: each moves only its own point, towards a point that does not move.
 template <class Mem>
 struct ProjectTethers {
