@@ -223,10 +223,12 @@ class CollisionHandler final : public CollisionStage<Exec> {
   // queries hold it tighter, where a point pushed by a fast collider needs them to keep ahead of it.
   // Where no early pass can follow (the substep's budget spent, and no collider pair at the last query to
   // push a point), nothing is read back: the same decisions with the device left to run ahead.
+  bool early_open() const { return early_in_substep_ < settings_.max_early_passes || push_open(); }
+  bool push_open() const { return early_in_substep_ < settings_.max_collider_early_passes && collider_near_; }
   bool wants_pass(const SolverState<Exec>& s) override {
     if (!proximity_) return false;
     const bool cut_open = early_in_substep_ < settings_.max_early_passes;
-    const bool push_open = early_in_substep_ < settings_.max_collider_early_passes && collider_near_;
+    const bool push_open = this->push_open();
     if (!cut_open && !push_open) {
       held_ = {0, 0};
       return false;
@@ -350,9 +352,9 @@ class CollisionHandler final : public CollisionStage<Exec> {
     timed("weft::bounds_finish", stats_.seconds_narrow_phase, [&] {
       b.finish(s.exec, s.w);
       // The prediction (or what the last query left of it) cut back to the new bounds; the points still
-      // held short ask for an early pass at the next check.
+      // held short ask for an early pass at the next check (their count read back only while one can run).
       b.truncate_prediction(s.exec, s.x, s.w);
-      held_ = b.cut_counts(s.exec);
+      held_ = early_open() ? b.cut_counts(s.exec) : typename DisplacementBounds<Exec>::CutCounts{0, 0};
     });
     ncontacts_ = n;
     jacobi_run_.contacts_changed();
