@@ -9,7 +9,8 @@ namespace {
 
 TEST(WEFT_TEST_SUITE, exclusive_scan_of_integers) {
   using Exec = WEFT_TEST_EXECSPACE;
-  for (int n : {0, 1, 7, 1023, 100003}) {
+  // Sizes on both sides of one block (128), of two levels (16384) and with three levels of block sums.
+  for (int n : {0, 1, 7, 128, 129, 1023, 16384, 16385, 100003}) {
     std::vector<int> v(n);
     for (int i = 0; i < n; ++i) v[i] = (i * 7919) % 13;
     auto d = weft::test::to_device<Exec>(v);
@@ -19,6 +20,14 @@ TEST(WEFT_TEST_SUITE, exclusive_scan_of_integers) {
     long acc = 0;
     for (int i = 0; i < n; ++i) { ASSERT_EQ(h[i], acc) << i; acc += v[i]; }
     EXPECT_EQ(total, acc);
+    // In place, and on the device without the total.
+    std::vector<long> w(v.begin(), v.end());
+    auto inplace = weft::test::to_device<Exec>(w);
+    EXPECT_EQ(weft::exclusive_scan(Exec(), inplace, inplace), acc) << n;
+    EXPECT_EQ(weft::test::to_host(inplace), h) << n;
+    auto ondevice = weft::test::to_device<Exec>(w);
+    weft::exclusive_scan_on_device(Exec(), ondevice, ondevice);
+    EXPECT_EQ(weft::test::to_host(ondevice), h) << n;
   }
 }
 
