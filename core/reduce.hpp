@@ -39,11 +39,6 @@ struct ReduceIdentity {
   }
 };
 
-// A block's fold loads kAhead values before it folds them, in order: the same result, with the loads in
-// flight together instead of one round trip each (a block's 256 loads one after another took 20-30 us on
-// an H200, where a block is one thread).
-inline constexpr int kAhead = 8;
-
 template <class In, class Partial, class Op>
 struct ReduceBlocks {
   In in;
@@ -51,16 +46,9 @@ struct ReduceBlocks {
   long len;
   Op op;
   KOKKOS_INLINE_FUNCTION void operator()(long b) const {
-    using T = typename Partial::non_const_value_type;
     const long lo = b * kReduceBlock, hi = lo + kReduceBlock < len ? lo + kReduceBlock : len;
-    T acc = in(lo);
-    long i = lo + 1;
-    for (; i + kAhead <= hi; i += kAhead) {
-      T v[kAhead];
-      for (int k = 0; k < kAhead; ++k) v[k] = in(i + k);
-      for (int k = 0; k < kAhead; ++k) acc = op(acc, v[k]);
-    }
-    for (; i < hi; ++i) acc = op(acc, in(i));
+    typename Partial::non_const_value_type acc = in(lo);
+    for (long i = lo + 1; i < hi; ++i) acc = op(acc, in(i));
     partial(b) = acc;
   }
 };
@@ -167,13 +155,8 @@ struct SumCountBlocks {
   long len;
   KOKKOS_INLINE_FUNCTION void operator()(long b) const {
     const long lo = b * kReduceBlock, hi = lo + kReduceBlock < len ? lo + kReduceBlock : len;
-    long acc = 0, i = lo;
-    for (; i + kAhead <= hi; i += kAhead) {
-      long v[kAhead];
-      for (int k = 0; k < kAhead; ++k) v[k] = long(in(i + k));
-      for (int k = 0; k < kAhead; ++k) acc += v[k];
-    }
-    for (; i < hi; ++i) acc += long(in(i));
+    long acc = 0;
+    for (long i = lo; i < hi; ++i) acc += long(in(i));
     partial(b) = acc;
   }
 };
