@@ -223,8 +223,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
   // queries hold it tighter, where a point pushed by a fast collider needs them to keep ahead of it.
   // Where no early pass can follow (the substep's budget spent, and no collider pair at the last query to
   // push a point), nothing is read back: the same decisions with the device left to run ahead.
-  bool early_open() const { return early_in_substep_ < settings_.max_early_passes || push_open(); }
-  bool push_open() const { return early_in_substep_ < settings_.max_collider_early_passes && collider_near_; }
   bool wants_pass(const SolverState<Exec>& s) override {
     if (!proximity_) return false;
     const bool cut_open = early_in_substep_ < settings_.max_early_passes;
@@ -384,6 +382,11 @@ class CollisionHandler final : public CollisionStage<Exec> {
   }
 
  private:
+  // Whether an early pass can still run in this substep: for any cut-back points, or for points a collider
+  // pushes (the last pass had collider pairs).
+  bool push_open() const { return early_in_substep_ < settings_.max_collider_early_passes && collider_near_; }
+  bool early_open() const { return early_in_substep_ < settings_.max_early_passes || push_open(); }
+
   template <class F>
   void timed(const char* region, double& acc, F&& stage) { timed_stage(region, profile_, acc, stage); }
   // sin(x) for the small angle of the parallel-edge rule, from its Taylor series (no library call).

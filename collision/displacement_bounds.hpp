@@ -837,7 +837,9 @@ class DisplacementBounds {
   }
 
   // Cuts every point back to its bound around X0 + t, marking the points cut back.
-  void truncate(const Exec& exec, const View<Vec3*>& x, const View<real*>& w) { run_truncate(exec, x, w, false, false); }
+  void truncate(const Exec& exec, const View<Vec3*>& x, const View<real*>& w) {
+    Kokkos::parallel_for("weft::bounds_truncate", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)), truncate_step(x, w));
+  }
   // truncate() as a per-point step, for a kernel that moves each point first (the Jacobi contacts' apply).
   bounds_detail::Truncate<Mem> truncate_step(const View<Vec3*>& x, const View<real*>& w) const {
     return {x,    x0_,  w,    bound_, want_, deficit_, pending_, cut_, tally_, touch_, ref_, t_,

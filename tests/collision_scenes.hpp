@@ -196,6 +196,28 @@ TEST(WEFT_TEST_SUITE, collider_early_passes_run_only_where_a_collider_moves) {
   EXPECT_GT(early_passes(box, 4), early_passes(box, 0));
 }
 
+// A frame's "cut back" figure is counted per point on the device over every truncation of that frame (the
+// early-pass checks read counts only while an early pass can follow): each early pass needed more than
+// early_pass_fraction of the moving points cut back, and the figure starts anew each frame.
+TEST(WEFT_TEST_SUITE, frame_cut_back_tally_covers_its_early_passes) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  const weft::Scene box = weft::io::make_builtin_scene("fast-collider", {10});
+  long movable = 0;
+  for (size_t i = 0; i < box.points.size(); ++i) movable += box.points.mass[i] > 0 && !(box.points.stopped[i] & 1);
+  const real many = box.settings.collision.early_pass_fraction * real(movable);
+  weft::SimulationOn<Exec> sim(box);
+  long early = 0, total = 0, largest = 0;
+  for (int f = 0; f < 6; ++f) {
+    const weft::CollisionStats c = sim.step_frame().collision;
+    EXPECT_GE(real(c.points_cut_back), real(c.early_passes) * many) << "frame " << f;
+    early += c.early_passes;
+    total += c.points_cut_back;
+    largest = std::max(largest, c.points_cut_back);
+  }
+  EXPECT_GT(early, 0);
+  EXPECT_LT(largest, total);  // not a running sum
+}
+
 real settled_rms_speed(bool smoothing, weft::ContactSolver solver = weft::ContactSolver::GaussSeidel,
                        weft::CcdSpan span = weft::CcdSpan::Pass, weft::ContactModel model = weft::ContactModel::Ccd) {
   using Exec = WEFT_TEST_EXECSPACE;
