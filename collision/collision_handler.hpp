@@ -76,7 +76,6 @@ class CollisionHandler final : public CollisionStage<Exec> {
     cloth_margin_ = upload<Mem>(margin, "weft::cloth_margin");
     cloth_failsafe_margin_ = upload<Mem>(failsafe_margin, "weft::cloth_failsafe_margin");
     if (proximity_) {
-      bound_settings_.animated_pins = !s.kinematic_point.empty() && s.pin_targets.frames.size() > 1;
       bound_settings_.nearest_margins = settings_.nearest_margins;
       bound_settings_.predicted_reference = settings_.predicted_reference;
       real thinnest = 0;
@@ -97,9 +96,17 @@ class CollisionHandler final : public CollisionStage<Exec> {
       }
       bounds_.emplace(long(s.points.size()), upload<Mem>(floor, "weft::bounds_floor"), upload<Mem>(ceiling, "weft::bounds_ceiling"),
                       bound_settings_);
-      // Pins that follow an animation hold back in groups. A still pin is held back only by the common
-      // translation dragging it off where it stands, and alone it is dragged least.
-      if (bound_settings_.animated_pins && bound_settings_.bound_pins) {
+      // Pins that follow an animation hold back in groups. Still pins need none: the common translation
+      // is theirs, 0 (DisplacementBounds::prepare). But cloth on still pins in a scene with colliders moves
+      // with its free points' mean (free_frame_): a sheet held in its pins' frame cannot keep ahead of a
+      // collider pushing it (the 10 m/s box ran through the fast-collider sheet), so there the pins are
+      // dragged along where the cloth's free points move faster than their bounds allow.
+      const bool animated_pins = !s.kinematic_point.empty() && s.pin_targets.frames.size() > 1;
+      bool any_pinned = !s.kinematic_point.empty();
+      for (size_t i = 0; i < s.points.size(); ++i)
+        any_pinned = any_pinned || (s.points.stopped[i] & 1) || !(s.points.mass[i] > 0);
+      free_frame_ = any_pinned && !animated_pins && !s.colliders.empty();
+      if (animated_pins && bound_settings_.bound_pins) {
         std::vector<char> pinned(s.points.size(), 0);
         for (int k : s.kinematic_point) pinned[size_t(k)] = 1;
         const PinGroups groups = pin_groups(s.triangles, pinned);
@@ -278,7 +285,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
                 !(b.references() && first) &&
                 !(real(b.spent(s.exec, from, s.w)) > settings_.early_pass_fraction * real(b.movable()));
       early_next_ = false;
-      b.prepare(s.exec, from, s.x, s.w, cloth_tris_, first, refresh);
+      b.prepare(s.exec, from, s.x, s.w, cloth_tris_, first, refresh, free_frame_);
       cloth.x = cloth.xs = cloth.xo = b.x0();
       const View<const real*> margins = b.margins();
       if (!refresh)
@@ -433,6 +440,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
   long nself_contacts_ = 0;  // proximity: self contacts of the last pass that measured them (contacts_[0, n))
   bool early_next_ = false;  // proximity: wants_pass asked for the next pass
   bool collider_near_ = false;  // proximity: the last pass had collider pairs (a collider may push points)
+  bool free_frame_ = false;     // proximity: queries in the free points' frame (still pins and colliders)
   BoundSettings bound_settings_;
   std::optional<DisplacementBounds<Exec>> bounds_;
   View<Vec3*> x_pass_;  // cloth positions at the previous pass of the substep (CcdSpan::Pass)

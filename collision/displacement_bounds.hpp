@@ -605,7 +605,6 @@ struct BoundSettings {
   real gamma = 0.4;          // a point moves at most gamma times its nearest distance (< 1/2)
   real detect_scale = 1.25;  // the contact reach, as the narrow phase's (times the two thicknesses)
   bool bound_pins = true;    // pinned points reach their targets within their bounds too (else they jump)
-  bool animated_pins = false;  // the scene's pins follow an animation: the common translation is theirs
   bool nearest_margins = false;  // margins grow no further than their corners' nearest features (TriangleMargins)
   bool predicted_reference = false;  // each point bounded beside its own wanted move (PairDistances' Ref)
   int max_anchor_rounds = 3;     // then every point is anchored to t, and references rest until the next frame
@@ -618,8 +617,8 @@ struct BoundSettings {
 // finish(), truncate_prediction(); truncate() after every position update.
 //
 // Bounds hold a point's move beside the common translation t of the query (the mean move the cloth's
-// points want): a rigid translation changes no distance between cloth features, so cloth that falls or
-// sways as a whole is not held to its mesh's spacing per query. Colliders do not translate with it; their
+// pins want, or with no pins its free points'): a rigid translation changes no distance between cloth
+// features, so cloth that falls or sways as a whole is not held to its mesh's spacing per query. Colliders do not translate with it; their
 // pairs are met where the cloth goes (X0 + t), with the narrow phase's CCD over the way there.
 template <class Exec>
 class DisplacementBounds {
@@ -677,8 +676,9 @@ class DisplacementBounds {
   // (the prediction is what the points want), else they want the deficit the last query left. A full
   // query sets the triangles' margins; a `refresh` keeps them, and the pairs (the caller's), from the last
   // full one. Reads three sums back, in one copy.
+  // `free_frame`: t is the free points' mean even where the cloth has pins.
   void prepare(const Exec& exec, const View<Vec3*>& from, const View<Vec3*>& x, const View<real*>& w,
-               const View<int* [3]>& tris, bool first, bool refresh = false) {
+               const View<int* [3]>& tris, bool first, bool refresh = false, bool free_frame = false) {
     using namespace bounds_detail;
     if (from.data() != x0_.data()) Kokkos::deep_copy(exec, x0_, from);
     const long n = long(x.extent(0));
@@ -689,12 +689,13 @@ class DisplacementBounds {
                            bounds_detail::MarkMovable<Mem>{w, flag_});
       movable_ = sum_counts(exec, flag_);
     }
-    // The cloth's reference motion: with animated pins, theirs (what it hangs from: with the free points'
-    // mean the jammed twist drifted off, pins and all, to 20 m/s); on still pins or none, its free
-    // points' (a sheet on still pins, struck by a fast collider, moves on with it). Its sum is one
-    // reduction of vectors, read back once.
+    // The cloth's reference motion: with pins, theirs (what it hangs from; on still pins t = 0, so they
+    // stay where they stand). With the free points' mean the jammed twist drifted off, pins and all, to
+    // 20 m/s, and a sheet hanging from two still corners dragged them along as it swung and fell away.
+    // With no pins, or with `free_frame`, the free points'. Its sum is one reduction of vectors, read
+    // back once.
     const long pinned = n - movable_;
-    const bool by_pins = s_.bound_pins && s_.animated_pins && pinned > 0;
+    const bool by_pins = s_.bound_pins && pinned > 0 && !free_frame;
     const long averaged = by_pins ? pinned : movable_;
     t_ = Vec3{0, 0, 0};
     if (movable_ > 0) {

@@ -151,11 +151,11 @@ class Solver {
     const std::vector<real> strain = strains();  // copied back once: the max is exact, the percentile needs them all
     for (real e : strain) fs.max_strain = max_(fs.max_strain, e);
     fs.p99_strain = quantile(strain, 0.99);
-    const long nk = long(kin_point_.extent(0));
-    if (nk > 0) {
-      const auto lag = Kokkos::subview(e, Kokkos::make_pair(0L, nk));
-      Kokkos::parallel_for("weft::stats_pin_lag", Kokkos::RangePolicy<Exec>(exec_, 0, nk),
-                           kernels::PinLag<Mem>{kin_point_, kin_target_, targets_, x, lag});
+    const long nk = long(kin_point_.extent(0)), ns = long(still_point_.extent(0));
+    if (nk + ns > 0) {
+      const auto lag = Kokkos::subview(e, Kokkos::make_pair(0L, nk + ns));
+      Kokkos::parallel_for("weft::stats_pin_lag", Kokkos::RangePolicy<Exec>(exec_, 0, nk + ns),
+                           kernels::PinLag<Mem>{kin_point_, kin_target_, targets_, still_point_, still_at_, x, lag});
       fs.max_pin_lag = reduce_fixed(exec_, lag, MaxOp{});
     }
     long bad = 0;
@@ -444,10 +444,18 @@ class Solver {
     std::vector<char> kinematic(n, 0);
     for (int k : sc.kinematic_point) kinematic[k] = 1;
     movable_ = 0;
+    std::vector<int> still;
+    std::vector<Vec3> still_at;
     for (size_t i = 0; i < n; ++i) {
       w[i] = (p.mass[i] > 0 && !(p.stopped[i] & 1) && !kinematic[i]) ? 1 / p.mass[i] : 0.0;
       movable_ += w[i] > 0;
+      if (!(w[i] > 0) && !kinematic[i]) {
+        still.push_back(int(i));
+        still_at.push_back(p.position[i]);
+      }
     }
+    still_point_ = upload<Mem>(still, "weft::still_point");
+    still_at_ = upload<Mem>(still_at, "weft::still_at");
     state_.x = upload<Mem>(p.position, "weft::x");
     state_.v = upload<Mem>(p.velocity, "weft::v");
     state_.x_start = View<Vec3*>("weft::x_start", n);
@@ -656,6 +664,8 @@ class Solver {
   View<Vec3**> target_frames_, collider_frames_;
   View<Vec3*> targets_, targets_before_;  // targets at the end and at the start of the substep
   View<int*> kin_point_, kin_target_;
+  View<int*> still_point_;  // points that never move (stopped, or no mass), for the pin lag
+  View<Vec3*> still_at_;    // where they stand
   std::vector<int> collider_first_vertex_;  // each collider's first vertex in collider_x, then their count
   bool colliders_streamed_ = false;   // set_collider_frame was called: colliders follow the streamed frames
   View<Vec3*> collider_frame_start_, collider_frame_end_;  // streamed: the colliders at the frame's start and end

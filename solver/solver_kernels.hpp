@@ -67,13 +67,19 @@ struct Predict {
   }
 };
 
-// Distance of each pinned point from its target (it trails when the crossing fail-safe held it back).
+// Distance of each pinned point from where it belongs: an animated pin from its target (it trails where
+// the bounds or the crossing fail-safe hold it back), then a still point from where it stands.
 template <class Mem>
 struct PinLag {
   Kokkos::View<int*, Mem> point, target;
-  Kokkos::View<Vec3*, Mem> goals, x;
+  Kokkos::View<Vec3*, Mem> goals;
+  Kokkos::View<int*, Mem> still;
+  Kokkos::View<Vec3*, Mem> still_at, x;
   Kokkos::View<real*, Mem> lag;
-  KOKKOS_INLINE_FUNCTION void operator()(long k) const { lag(k) = sqrt_(norm2(x(point(k)) - goals(target(k)))); }
+  KOKKOS_INLINE_FUNCTION void operator()(long k) const {
+    const long nk = long(point.extent(0));
+    lag(k) = k < nk ? sqrt_(norm2(x(point(k)) - goals(target(k)))) : sqrt_(norm2(x(still(k - nk)) - still_at(k - nk)));
+  }
 };
 
 // Pinned points go to their targets. One that the crossing fail-safe held back (it is not where its previous

@@ -290,8 +290,9 @@ def run_weft(args, scene, frames, self_collision, out_dir):
     settings = sh(weft_cmd(args, "info", cache))
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "reports"))
     import weftlib  # noqa: E402 - the cache reader of the report scripts
-    final = weftlib.read_cache(cache)["positions"][-1]
+    final = np.asarray(weftlib.read_cache(cache)["positions"][-1], dtype=np.float64)
     return {**strain_figures(final, scene.x, scene.tris), "weft_args": list(args.weft_arg),
+        "lowest_y": float(final[:, 1].min()), "pin_error": float(np.abs(final[scene.held] - scene.targets(frames)).max()),
         "ms_per_frame": sum(timed) / len(timed) if timed else None, "frames_timed": len(timed),
         "intersections": per_frame[-1] if per_frame else last_count(chk),
         "max_intersections_any_frame": max(per_frame) if per_frame else None,
@@ -321,6 +322,7 @@ def table(rows):
             brief += "" if r["finite"] else ", NOT FINITE"
         else:
             brief += ", %d collision passes, self collision %s" % (st["collision_passes"], "on" if st["self_collision"] else "off")
+            brief += ", lowest y %.3f m, pin error %.1e m" % (r["lowest_y"], r["pin_error"])
             brief += ", max intersections over frames %s" % r["max_intersections_any_frame"]
             brief += "".join(" " + a for a in r.get("weft_args", []))
         inter = "-" if r["intersections"] is None else str(r["intersections"])
