@@ -97,15 +97,19 @@ class CollisionHandler final : public CollisionStage<Exec> {
       bounds_.emplace(long(s.points.size()), upload<Mem>(floor, "weft::bounds_floor"), upload<Mem>(ceiling, "weft::bounds_ceiling"),
                       bound_settings_);
       // Pins that follow an animation hold back in groups. Still pins need none: the common translation
-      // is theirs, 0 (DisplacementBounds::prepare). But cloth on still pins in a scene with colliders moves
-      // with its free points' mean (free_frame_): a sheet held in its pins' frame cannot keep ahead of a
-      // collider pushing it (the 10 m/s box ran through the fast-collider sheet), so there the pins are
-      // dragged along where the cloth's free points move faster than their bounds allow.
+      // is theirs, 0 (DisplacementBounds::prepare). But cloth on still pins in a scene whose colliders move
+      // moves with its free points' mean (free_frame_): a sheet held in its pins' frame cannot keep ahead
+      // of a collider pushing it (the 10 m/s box ran through the fast-collider sheet), so there the pins
+      // are dragged along where the cloth's free points move faster than their bounds allow.
       const bool animated_pins = !s.kinematic_point.empty() && s.pin_targets.frames.size() > 1;
       bool any_pinned = !s.kinematic_point.empty();
       for (size_t i = 0; i < s.points.size(); ++i)
         any_pinned = any_pinned || (s.points.stopped[i] & 1) || !(s.points.mass[i] > 0);
-      free_frame_ = any_pinned && !animated_pins && !s.colliders.empty();
+      still_pins_ = any_pinned && !animated_pins;
+      bool colliders_move = false;
+      for (const Collider& c : s.colliders)
+        for (const std::vector<Vec3>& f : c.motion.frames) colliders_move = colliders_move || f != c.motion.frames[0];
+      free_frame_ = still_pins_ && colliders_move;
       if (animated_pins && bound_settings_.bound_pins) {
         std::vector<char> pinned(s.points.size(), 0);
         for (int k : s.kinematic_point) pinned[size_t(k)] = 1;
@@ -140,6 +144,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     if (proximity_) stats_.points_cut_back = bounds_->take_cut_tally(s.exec);
   }
   CollisionStats frame_stats() const override { return stats_; }
+  void colliders_streamed() override { free_frame_ = still_pins_; }
 
   // The trees are built once per frame; every pass refits them first.
   void begin_substep(const SolverState<Exec>& s, real, int substep) override {
@@ -440,7 +445,8 @@ class CollisionHandler final : public CollisionStage<Exec> {
   long nself_contacts_ = 0;  // proximity: self contacts of the last pass that measured them (contacts_[0, n))
   bool early_next_ = false;  // proximity: wants_pass asked for the next pass
   bool collider_near_ = false;  // proximity: the last pass had collider pairs (a collider may push points)
-  bool free_frame_ = false;     // proximity: queries in the free points' frame (still pins and colliders)
+  bool still_pins_ = false;     // proximity: the cloth has pins, none of them animated
+  bool free_frame_ = false;     // proximity: queries in the free points' frame (still pins, moving colliders)
   BoundSettings bound_settings_;
   std::optional<DisplacementBounds<Exec>> bounds_;
   View<Vec3*> x_pass_;  // cloth positions at the previous pass of the substep (CcdSpan::Pass)

@@ -19,6 +19,7 @@ class CollisionStage {
   // After project(): whether a pass should run before the next sweep, beside the scheduled ones.
   virtual bool wants_pass(const SolverState<Exec>&) { return false; }
   virtual void end_frame(const SolverState<Exec>&) {}  // after the frame's last substep
+  virtual void colliders_streamed() {}  // the colliders follow streamed frames from now on: they may move
   // The frame so far: sums since begin_frame(), the last pass's and substep's counts.
   virtual CollisionStats frame_stats() const = 0;
 };

@@ -498,6 +498,7 @@ class Solver {
     }
     Kokkos::deep_copy(collider_frame_end_, state_.collider_x);
     colliders_streamed_ = true;
+    if (collision_) collision_->colliders_streamed();
   }
 
   void upload_rows(const Scene& sc) {
