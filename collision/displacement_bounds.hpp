@@ -618,8 +618,9 @@ struct BoundSettings {
 //
 // Bounds hold a point's move beside the common translation t of the query (the mean move the cloth's
 // pins want, or with no pins its free points'): a rigid translation changes no distance between cloth
-// features, so cloth that falls or sways as a whole is not held to its mesh's spacing per query. Colliders do not translate with it; their
-// pairs are met where the cloth goes (X0 + t), with the narrow phase's CCD over the way there.
+// features, so cloth that falls or sways as a whole is not held to its mesh's spacing per query. Colliders
+// do not translate with it; their pairs are met where the cloth goes (X0 + t), with the narrow phase's CCD
+// over the way there.
 template <class Exec>
 class DisplacementBounds {
  public:

@@ -23,7 +23,8 @@ struct FrameStats {
   real max_edge_strain = 0; // max |length / rest - 1| over distance constraints
   real rms_speed = 0;       // m/s, over points that move
   long non_finite = 0;      // points whose position is NaN or Inf
-  real max_pin_lag = 0;     // m, largest distance of a pinned point from its animated target, or of a still one from where it stands
+  real max_pin_lag = 0;     // m, largest distance of a pinned point from its animated target (or a still
+                            // one from where it stands)
   double seconds = 0;       // wall time of the frame
   ScheduleStats schedule;   // the solver's schedule
   CollisionStats collision; // the collision stage (zeros without one)
