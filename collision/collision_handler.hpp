@@ -103,8 +103,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
       // are dragged along where the cloth's free points move faster than their bounds allow.
       const bool animated_pins = !s.kinematic_point.empty() && s.pin_targets.frames.size() > 1;
       bool any_pinned = !s.kinematic_point.empty();
-      for (size_t i = 0; i < s.points.size(); ++i)
-        any_pinned = any_pinned || (s.points.stopped[i] & 1) || !(s.points.mass[i] > 0);
+      for (size_t i = 0; i < s.points.size(); ++i) any_pinned = any_pinned || s.points.still(i);
       still_pins_ = any_pinned && !animated_pins;
       bool colliders_move = false;
       for (const Collider& c : s.colliders)

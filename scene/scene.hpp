@@ -46,6 +46,8 @@ struct ClothPoints {
   std::vector<int> stopped;     // bit 0: the point does not move
   std::vector<int> piece;       // which cloth piece
   size_t size() const { return position.size(); }
+  // Whether point i is held where it stands (no mass, or stopped); kinematic points are pinned too.
+  bool still(size_t i) const { return !(mass[i] > 0) || (stopped[i] & 1); }
 };
 
 // An animated position source: `frames[f][k]` is target k at frame frame_start + f; positions between

@@ -447,9 +447,9 @@ class Solver {
     std::vector<int> still;
     std::vector<Vec3> still_at;
     for (size_t i = 0; i < n; ++i) {
-      w[i] = (p.mass[i] > 0 && !(p.stopped[i] & 1) && !kinematic[i]) ? 1 / p.mass[i] : 0.0;
+      w[i] = !p.still(i) && !kinematic[i] ? 1 / p.mass[i] : 0.0;
       movable_ += w[i] > 0;
-      if (!(w[i] > 0) && !kinematic[i]) {
+      if (p.still(i) && !kinematic[i]) {
         still.push_back(int(i));
         still_at.push_back(p.position[i]);
       }
