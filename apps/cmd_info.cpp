@@ -51,7 +51,8 @@ void print_settings(const SolverSettings& s, bool fem_rows = false) {
             << c.parallel_edge_degrees << " degrees\n"
             << "  contact model " << contact_model_name(c.contact_model);
   if (c.contact_model == ContactModel::Proximity)
-    std::cout << " (early passes at " << c.early_pass_fraction << " of the points cut back, at most "
+    std::cout << " (early passes at " << c.early_pass_fraction << " of the points held to less than 1/"
+              << 1 + c.early_pass_excess << " of their move, at most "
               << c.max_early_passes << " a substep, " << c.max_collider_early_passes
               << " while a collider pushes; pair refresh " << (c.pair_refresh ? "on" : "off")
               << "; nearest margins " << (c.nearest_margins ? "on" : "off") << "; predicted reference "

@@ -78,6 +78,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
     if (proximity_) {
       bound_settings_.nearest_margins = settings_.nearest_margins;
       bound_settings_.predicted_reference = settings_.predicted_reference;
+      bound_settings_.early_excess = settings_.early_pass_excess;
       real thinnest = 0;
       for (real th : s.points.thickness)
         if (th > 0 && (thinnest == 0 || th < thinnest)) thinnest = th;

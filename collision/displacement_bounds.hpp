@@ -514,6 +514,7 @@ struct Truncate {
   bool carry, resume, reference;
   Kokkos::View<const int*, Mem> group;     // empty, or per point its pin group (-1: none)
   Kokkos::View<const Fixed*, Mem> share;   // per pin group, the fraction of their moves its pins take
+  real excess = 0;  // a point cut back counts (cut) when it wanted more than (1 + excess) times its bound
   KOKKOS_INLINE_FUNCTION void operator()(long i) const {
     const bool pinned = !(w(i) > 0);
     // A pinned point goes on to its target itself, so it lands on it exactly.
@@ -550,7 +551,7 @@ struct Truncate {
       deficit(i) = pinned ? xi : xi - kept;
       pending(i) = pinned ? 1 : 0;
     }
-    cut(i) = cut_mark(touch(i));
+    cut(i) = touch(i) || !(excess > 0) || l > (1 + excess) * b ? cut_mark(touch(i)) : 0;
     ++tally(i);
   }
 };
@@ -610,6 +611,8 @@ struct BoundSettings {
   int max_anchor_rounds = 3;     // then every point is anchored to t, and references rest until the next frame
   real still_distance = 0;       // a refresh is still while no point moved more than this since the last measured pass (0: never)
   real separation = 0;           // no pair is closed past this (FinishBounds, apart())
+  real early_excess = 0;         // a point cut back counts towards an early pass when it wanted more than
+                                 // (1 + this) times its bound (Truncate)
 };
 
 // The bounds' working memory and kernels. Usage per query: prepare() (the common translation and the
@@ -845,7 +848,7 @@ class DisplacementBounds {
   // truncate() as a per-point step, for a kernel that moves each point first (the Jacobi contacts' apply).
   bounds_detail::Truncate<Mem> truncate_step(const View<Vec3*>& x, const View<real*>& w) const {
     return {x,    x0_,  w,    bound_, want_, deficit_, pending_, cut_, tally_, touch_, ref_, t_,
-            false, false, s_.predicted_reference, View<int*>(), pin_share_};
+            false, false, s_.predicted_reference, View<int*>(), pin_share_, s_.early_excess};
   }
 
   // At a query: the prediction cut back (first query of a substep), or the deficit left by the last query
@@ -897,7 +900,8 @@ class DisplacementBounds {
     }
     Kokkos::parallel_for("weft::bounds_truncate", Kokkos::RangePolicy<Exec>(exec, 0, x.extent(0)),
                          Truncate<Mem>{x, x0_, w, bound_, want_, deficit_, pending_, cut_, tally_, touch_, ref_, t_, carry, resume,
-                                       s_.predicted_reference, groups ? pin_group_ : View<int*>(), pin_share_});
+                                       s_.predicted_reference, groups ? pin_group_ : View<int*>(), pin_share_,
+                                       s_.early_excess});
   }
 
   bounds_detail::PairDistances<Mem> distances(const SideMesh<Mem>& A, const SideMesh<Mem>& B,

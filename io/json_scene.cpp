@@ -153,7 +153,7 @@ std::string resolve(const std::string& json_path, const std::string& file) {
 void read_settings(const Node& n, Scene& s) {
   n.object({"fps", "frames", "substeps", "iterations", "collision_passes", "smoothing", "gravity", "wind", "damping",
             "impact_zone_smoothing", "collision_failsafe", "contact_solver", "ccd_span", "tethers", "collisions",
-            "contact_model", "early_pass_fraction", "max_early_passes", "max_collider_early_passes", "pair_refresh", "merge_contacts", "nearest_margins",
+            "contact_model", "early_pass_fraction", "early_pass_excess", "max_early_passes", "max_collider_early_passes", "pair_refresh", "merge_contacts", "nearest_margins",
             "predicted_reference", "layer_shock", "still_tolerance", "chebyshev_rho",
             "chebyshev_delay", "stretch_limits", "coarse_levels", "coarse_iterations"});
   SolverSettings& st = s.settings;
@@ -189,6 +189,8 @@ void read_settings(const Node& n, Scene& s) {
   }
   st.collision.early_pass_fraction =
       n.number("early_pass_fraction", st.collision.early_pass_fraction, Range::NonNegative);
+  st.collision.early_pass_excess =
+      n.number("early_pass_excess", st.collision.early_pass_excess, Range::NonNegative);
   st.collision.max_early_passes = n.integer("max_early_passes", st.collision.max_early_passes, 0);
   st.collision.max_collider_early_passes =
       n.integer("max_collider_early_passes", st.collision.max_collider_early_passes, 0);

@@ -11,7 +11,7 @@ namespace {
 // A field added to these structs must be added to the file (and the format version raised): the sizes are
 // checked so that the scene file does not silently drop it (a field that fits in padding escapes the check).
 static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is stored as 3 doubles");
-static_assert(sizeof(SolverSettings) == 232 && sizeof(CollisionSettings) == 104,
+static_assert(sizeof(SolverSettings) == 240 && sizeof(CollisionSettings) == 112,
               "SolverSettings or CollisionSettings changed: update the settings tables below");
 static_assert(sizeof(XpbdMaterial) == 24 && sizeof(DistanceConstraint) == 40 && sizeof(BendConstraint) == 48 &&
                   sizeof(TriarapConstraint) == 88 && sizeof(PinConstraint) == 72 && sizeof(AttachConstraint) == 64 &&
@@ -48,6 +48,7 @@ const Setting<real> kRealSettings[] = {
     collision("impact_zone_epsilon", &CollisionSettings::impact_zone_epsilon),
     own("tether_stretch", &SolverSettings::tether_stretch),
     collision("early_pass_fraction", &CollisionSettings::early_pass_fraction),
+    collision("early_pass_excess", &CollisionSettings::early_pass_excess),
     collision("still_tolerance", &CollisionSettings::still_tolerance),
     own("chebyshev_rho", &SolverSettings::chebyshev_rho),
 };
@@ -379,6 +380,8 @@ SolverSettings read_settings(const h5::File& f, const std::string& group) {
     if (std::strcmp(name, "tether_stretch") == 0 && !h5::has_attribute(f, group, name)) continue;
     // Absent in files written before proximity contacts: they ran the ccd model, which has none.
     if (std::strcmp(name, "early_pass_fraction") == 0 && !h5::has_attribute(f, group, name)) continue;
+    // Absent in files written before it existed: every point cut back counted.
+    if (std::strcmp(name, "early_pass_excess") == 0 && !h5::has_attribute(f, group, name)) { s.collision.early_pass_excess = 0; continue; }
     // Absent in files written before Chebyshev acceleration: they ran without it.
     if (std::strcmp(name, "chebyshev_rho") == 0 && !h5::has_attribute(f, group, name)) { s.chebyshev_rho = 0; continue; }
     // Absent in files written before still passes: every refresh measured its pairs.

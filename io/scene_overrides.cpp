@@ -133,6 +133,8 @@ const std::vector<Entry>& entries() {
        [](Scene& s, const std::string& v) { s.settings.collision.predicted_reference = to_bool(v); }},
       {"still_tolerance", "number >= 0: a proximity pass keeps the last measured contacts while no point moved more than this times the thinnest cloth thickness (0: off)",
        [](Scene& s, const std::string& v) { s.settings.collision.still_tolerance = to_real(v, Range::NonNegative); }},
+      {"early_pass_excess", "number >= 0: a point cut back counts towards an early pass when it wanted more than (1 + this) times its bound",
+       [](Scene& s, const std::string& v) { s.settings.collision.early_pass_excess = to_real(v, Range::NonNegative); }},
       {"early_pass_fraction", "number >= 0: share of moving points cut back that runs a pass early",
        [](Scene& s, const std::string& v) { s.settings.collision.early_pass_fraction = to_real(v); }},
       {"max_early_passes", "integer >= 0: early passes per substep at most",

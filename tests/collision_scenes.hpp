@@ -380,27 +380,33 @@ TEST(WEFT_TEST_SUITE, collision_scene_hash_is_pinned) {
   weft::Scene s = weft::io::make_builtin_scene("drape-sphere", {8});
   uint64_t h = 0;
   weft::test::run_frames<Exec>(s, 12, &h);
-  EXPECT_EQ(weft::hash_hex(h), "b91c77cf58712c70");  // proximity contacts, the default (passes keep pairs)
+  EXPECT_EQ(weft::hash_hex(h), "3b3c2b5fb440d4b2");  // proximity contacts, the default (passes keep pairs)
+  s.settings.collision.early_pass_excess = 0;  // every point cut back counts towards an early pass
+  weft::test::run_frames<Exec>(s, 12, &h);
+  EXPECT_EQ(weft::hash_hex(h), "b91c77cf58712c70");
+  s.settings.collision.early_pass_excess = 1;
   s.settings.collision.merge_contacts = true;  // contacts on the same points as one row
   weft::test::run_frames<Exec>(s, 12, &h);
-  EXPECT_EQ(weft::hash_hex(h), "e502fe28454aa87c");
+  EXPECT_EQ(weft::hash_hex(h), "d838ab3127905430");
   s.settings.collision.merge_contacts = false;
   s.settings.collision.pair_refresh = false;                   // every pass queries afresh
   weft::test::run_frames<Exec>(s, 12, &h);
-  EXPECT_EQ(weft::hash_hex(h), "8b1b3a17ffa59bc9");
+  EXPECT_EQ(weft::hash_hex(h), "3159f06a7a76c0d4");
   s.settings.collision.pair_refresh = true;
   s.settings.collision.nearest_margins = true;  // margins no wider than the nearest features
   weft::test::run_frames<Exec>(s, 12, &h);
-  EXPECT_EQ(weft::hash_hex(h), "63dad5b29fcf32ee");
+  EXPECT_EQ(weft::hash_hex(h), "35b0539e7de73191");
   s.settings.collision.nearest_margins = false;
   s.settings.collision.predicted_reference = true;  // bounds beside each point's own wanted move
   weft::test::run_frames<Exec>(s, 12, &h);
-  EXPECT_EQ(weft::hash_hex(h), "c485a605a4398e8a");
+  EXPECT_EQ(weft::hash_hex(h), "7a6194697b765894");
   s.settings.collision.predicted_reference = false;
   s.settings.collision.max_early_passes = 4;  // up to four early passes wherever points are cut back
+  s.settings.collision.early_pass_excess = 0;
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "cd78eafe3f9ea3df");
   s.settings.collision.max_early_passes = 1;
+  s.settings.collision.early_pass_excess = 1;
   s.settings.collision.contact_model = weft::ContactModel::Ccd;
   weft::test::run_frames<Exec>(s, 12, &h);
   EXPECT_EQ(weft::hash_hex(h), "303d4c051ec83421");  // either CCD span; no Chebyshev with the ccd model

@@ -43,7 +43,7 @@ const char* kScene = R"({
   "settings": {"fps": 30, "frames": [1, 3], "substeps": 4, "iterations": 15, "collision_passes": 3,
                "smoothing": 2, "gravity": [0, -10, 0], "wind": [1, 0, 0], "damping": 0.5,
                "impact_zone_smoothing": false, "contact_solver": "jacobi", "ccd_span": "substep",
-               "tethers": 1.1, "stretch_limits": 1, "coarse_levels": 3, "coarse_iterations": 2, "contact_model": "ccd", "early_pass_fraction": 0.05, "max_early_passes": 2, "max_collider_early_passes": 0,
+               "tethers": 1.1, "stretch_limits": 1, "coarse_levels": 3, "coarse_iterations": 2, "contact_model": "ccd", "early_pass_fraction": 0.05, "early_pass_excess": 2, "max_early_passes": 2, "max_collider_early_passes": 0,
                "pair_refresh": false, "merge_contacts": false, "nearest_margins": true, "predicted_reference": true, "layer_shock": 10,
                "still_tolerance": 0.3},
   "cloth": [
@@ -114,6 +114,7 @@ TEST(WEFT_TEST_SUITE, io_json_scene_gives_the_expected_scene) {
   EXPECT_EQ(st.coarse_iterations, 2);
   EXPECT_EQ(st.collision.contact_model, ContactModel::Ccd);
   EXPECT_EQ(st.collision.early_pass_fraction, 0.05);
+  EXPECT_EQ(st.collision.early_pass_excess, 2);
   EXPECT_EQ(st.collision.max_early_passes, 2);
   EXPECT_EQ(st.collision.max_collider_early_passes, 0);
   EXPECT_FALSE(st.collision.pair_refresh);
