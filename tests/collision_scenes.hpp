@@ -196,6 +196,27 @@ TEST(WEFT_TEST_SUITE, collider_early_passes_run_only_where_a_collider_moves) {
   EXPECT_GT(early_passes(box, 4), early_passes(box, 0));
 }
 
+// An early pass counts only points held to less than 1 / (1 + early_pass_excess) of their move: points cut
+// back a little wait for the next scheduled pass (drape-sphere runs fewer early passes), while points a
+// moving collider pushes count however little they were cut back (the 10 m/s box keeps its early passes).
+TEST(WEFT_TEST_SUITE, early_passes_count_only_points_held_to_less_than_half) {
+  using Exec = WEFT_TEST_EXECSPACE;
+  const auto early_passes = [](weft::Scene s, real excess, int frames) {
+    s.settings.collision.early_pass_excess = excess;
+    weft::SimulationOn<Exec> sim(s);
+    long n = 0;
+    for (int f = 0; f < frames; ++f) n += sim.step_frame().collision.early_passes;
+    return n;
+  };
+  const weft::Scene drape = weft::io::make_builtin_scene("drape-sphere", {8});
+  const long every = early_passes(drape, 0, 12), half = early_passes(drape, 1, 12);
+  EXPECT_GT(every, 0);
+  EXPECT_LT(half, every);
+  EXPECT_LE(early_passes(drape, 1e9, 12), half);
+  const weft::Scene box = weft::io::make_builtin_scene("fast-collider", {10});
+  EXPECT_GT(early_passes(box, 1e9, 6), 0);
+}
+
 // A frame's "cut back" figure is counted per point on the device over every truncation of that frame (the
 // early-pass checks read counts only while an early pass can follow): each early pass needed more than
 // early_pass_fraction of the moving points cut back, and the figure starts anew each frame.
