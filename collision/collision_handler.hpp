@@ -330,7 +330,7 @@ class CollisionHandler final : public CollisionStage<Exec> {
         lbvh_detail::reserve(self_hits_, np, "weft::self_hits");
         View<const IndexPair*> measured = pairs_;
         long nm = np;
-        if (b.sweeps()) b.add_self_pairs_with_references(s.exec, cloth, pairs_, np, s.w, self_hits_, ns);
+        if (b.sweeps()) b.add_self_pairs_with_references(s.exec, cloth, pairs_, np, s.w, self_hits_, ns, narrow_.pair_cull(), measured, nm);
         else b.add_self_pairs(s.exec, cloth, pairs_, np, b.relative_end(), s.w, self_hits_, ns, narrow_.pair_cull(), measured, nm);
         if (nm > 0) n += narrow_.fill(s.exec, cloth, cloth, ns, measured, nm, self_hits_, contacts_, n);
         nself_contacts_ = n;

@@ -349,10 +349,41 @@ struct PairDistances {
     record(P, pp, F, f, d, reach, detect_scale * r);
     return (d2 < lim * lim && narrow_detail::owns_closest_feature(F, TF, u, v, s)) || touches(d);
   }
-  // Whether a pair (without Ref) has no feature pair to measure: past every bound (with `past`), or its
-  // triangles apart along either normal by more than the reach (wider than any contact's).
+  // With Ref, a pair past every bound once its reference moves are taken off: its features are at least
+  // g apart at X0 (its triangles' boxes), its corners' references differ by at most D (the sum of the two
+  // triangles' largest), so each feature pair is measured at d - D >= g - D. Where that is at least every
+  // corner's Q plus `past`, no contact is within reach, and D <= g / 2 (no pair anchors its corners), the
+  // pair changes nothing. References only shrink over the rounds (anchored points go back to t), so a pair
+  // past every bound at the first round stays so at the later ones.
+  KOKKOS_INLINE_FUNCTION real largest_reference(const SideMesh<Mem>& S, const int (&p)[3]) const {
+    real r2 = 0;
+    for (int k = 0; k < 3; ++k) r2 = max_(r2, norm2(ref_move(S, p[k])));
+    return sqrt_(r2);
+  }
+  KOKKOS_INLINE_FUNCTION bool past_bounds_with_references(int ta, const int (&ia)[3], int tb, const int (&ib)[3]) const {
+    const Aabb ab = expand(expand(Aabb{A.x(ia[0]), A.x(ia[0])}, A.x(ia[1])), A.x(ia[2]));
+    const Aabb bb = expand(expand(Aabb{B.x(ib[0]), B.x(ib[0])}, B.x(ib[1])), B.x(ib[2]));
+    const real g = gap(ab, bb);
+    const real lim = max_(ns.detect_scale, ns.ee_detect_scale) * (narrow_detail::face_th(A, ta) + narrow_detail::face_th(B, tb));
+    if (!(g > lim * (1 + 1e-6) + 1e-8)) return false;
+    const real D = (largest_reference(A, ia) + largest_reference(B, ib)) * (1 + 1e-6) + 1e-9;
+    if (!(D <= (1 - kCoherence) * g * (1 - 1e-6))) return false;
+    const Fixed f = to_fixed(g - D);
+    for (int k = 0; k < 3; ++k) {
+      if (!A.collider && !(f >= qmin(ia[k]) + past)) return false;
+      if (!B.collider && !(f >= qmin(ib[k]) + past)) return false;
+    }
+    return true;
+  }
+  // Whether a pair has no feature pair to measure: past every bound (with `past`), or its triangles (with
+  // Ref, swept over their reference moves) apart along either normal by more than the reach (wider than any
+  // contact's).
   KOKKOS_INLINE_FUNCTION bool skipped(int ta, const int (&ia)[3], int tb, const int (&ib)[3], real reach,
                                       bool past) const {
+    if constexpr (Ref) {
+      if (pair_cull_detail::swept_apart(As, ia, Bs, ib, reach)) return true;
+      return past && qmin.extent(0) > 0 && past_bounds_with_references(ta, ia, tb, ib);
+    }
     if (past && qmin.extent(0) > 0 && past_bounds(ta, ia, tb, ib)) return true;
     return pair_cull_detail::swept_apart(A, ia, B, ib, reach);
   }
@@ -367,7 +398,7 @@ struct PairDistances {
     const bool contacts = hits.extent(0) > 0;
     const int ia[3] = {A.tris(ta, 0), A.tris(ta, 1), A.tris(ta, 2)}, ib[3] = {B.tris(tb, 0), B.tris(tb, 1), B.tris(tb, 2)};
     // Inline, the test past every bound pays on the host only (add_self_pairs).
-    if (!culled && (Ref ? pair_cull_detail::swept_apart(As, ia, Bs, ib, reach) : skipped(ta, ia, tb, ib, reach, kBoxes))) {
+    if (!culled && skipped(ta, ia, tb, ib, reach, kBoxes)) {
       if (contacts) hits(i) = 0;
       return;
     }
@@ -404,9 +435,9 @@ struct PairDistances {
 };
 
 // Whether a pair has a feature pair to measure: PairDistances::measures, as a predicate for PairCull::keep_if.
-template <class Mem>
+template <class Mem, bool Ref = false>
 struct MeasuredPairs {
-  PairDistances<Mem> distances;
+  PairDistances<Mem, Ref> distances;
   KOKKOS_INLINE_FUNCTION bool operator()(long i) const { return distances.measures(i); }
 };
 
@@ -790,20 +821,36 @@ class DisplacementBounds {
   // Self pairs (A the cloth at X0) with reference moves: the pairs run in rounds until no pair anchors a
   // point it had not (each round reads one count back); after max_anchor_rounds every point is anchored
   // and a last round gives the bounds without references. The first round also writes `hits` (the
-  // contacts stand at X0 whatever the references). Returns the rounds run.
+  // contacts stand at X0 whatever the references). As add_self_pairs, with `cut_first` the pairs that
+  // measure nothing are cut first (once: references only shrink over the rounds), `measured` and `nm` the
+  // rest, which `hits` follows. Returns the rounds run.
   int add_self_pairs_with_references(const Exec& exec, const SideMesh<Mem>& cloth, const View<IndexPair*>& pairs,
                                      long n, const View<real*>& w, const View<uint32_t*>& hits,
-                                     const NarrowSettings& ns) {
+                                     const NarrowSettings& ns, PairCull<Exec>& cull, View<const IndexPair*>& measured,
+                                     long& nm, bool cut_first = kCutSelfPairs) {
     using namespace bounds_detail;
+    measured = pairs;
+    nm = n;
     if (n == 0) return 0;
     SideMesh<Mem> swept = cloth;
     swept.x = xrel_;
     const long points = long(x0_.extent(0));
+    PairDistances<Mem, true> pd{cloth, cloth, pairs, xrel_, w, margin_, dmin_, s_.detect_scale,
+                                s_.bound_pins, hits, ns, swept, swept, anchor_};
+    if (s_.bound_pins && !s_.nearest_margins) {
+      pd.qmin = qmin_;
+      pd.past = s_.still_distance > 0 ? to_fixed(4 * s_.still_distance) + 2 : 0;
+    }
+    if (cut_first) {
+      measured = cull.keep_if(exec, View<const IndexPair*>(pairs), n, MeasuredPairs<Mem, true>{pd}, nm);
+      if (nm == 0) return 0;
+      pd.pairs = measured;
+      pd.culled = true;
+    }
+    n = nm;
     for (int round = 0;; ++round) {
-      Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n),
-                           PairDistances<Mem, true>{cloth, cloth, pairs, xrel_, w, margin_, dmin_, s_.detect_scale,
-                                                    s_.bound_pins, round == 0 ? hits : View<uint32_t*>(), ns, swept,
-                                                    swept, anchor_});
+      pd.hits = round == 0 ? hits : View<uint32_t*>();
+      Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n), pd);
       Kokkos::parallel_for("weft::bounds_anchored", Kokkos::RangePolicy<Exec>(exec, 0, points),
                            MarkAnchored<Mem>{anchor_, flag_});
       const long anchored = sum_counts(exec, flag_);
@@ -814,9 +861,8 @@ class DisplacementBounds {
       Kokkos::parallel_for("weft::bounds_anchor", Kokkos::RangePolicy<Exec>(exec, 0, points),
                            AnchorPoints<Mem>{x0_, w, xrel_, xb_, ref_, anchor_, dmin_, t_, all, s_.bound_pins});
       if (all) {
-        Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n),
-                             PairDistances<Mem, true>{cloth, cloth, pairs, xrel_, w, margin_, dmin_, s_.detect_scale,
-                                                      s_.bound_pins, View<uint32_t*>(), ns, swept, swept, anchor_});
+        pd.hits = View<uint32_t*>();
+        Kokkos::parallel_for("weft::bounds_pairs", Kokkos::RangePolicy<Exec>(exec, 0, n), pd);
         return round + 2;
       }
     }

@@ -63,17 +63,24 @@ struct TwoTriangles {
     return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.bounds());
   }
   Kokkos::View<uint32_t*, Mem> hits{"hits", 1};
-  // A full query whose self pair goes through add_self_pairs, cut first (the device's way) or tested inline
-  // (the host's); the bounds on the host, the pair's contact bits (0 when it was not measured) and the
-  // pairs measured.
-  std::vector<real> query_self(bool cut_first, uint32_t& hit, long& measured) {
-    b.prepare(Exec(), x, x, w, tris, /*first*/ true);
+  // A full query whose self pair goes through add_self_pairs (with predicted_reference,
+  // add_self_pairs_with_references), cut first (the device's way) or tested inline (the host's); the
+  // bounds on the host, the pair's contact bits (0 when it was not measured) and the pairs measured. The
+  // lower triangle wants to move `apart` along x, the upper one as far the other way.
+  std::vector<real> query_self(bool cut_first, uint32_t& hit, long& measured, real apart = 0) {
+    std::vector<Vec3> wanted = x0h;
+    for (size_t i = 0; i < 6; ++i) wanted[i].x += i < 3 ? apart : -apart;
+    const auto xw = weft::test::to_device<Exec, Vec3>(wanted, "wanted");
+    b.prepare(Exec(), x, xw, w, tris, /*first*/ true);
     cloth.x = cloth.xs = cloth.xo = b.x0();
     weft::NarrowSettings ns;
     ns.self = true;
     weft::PairCull<Exec> cull;
     Kokkos::View<const weft::IndexPair*, Mem> kept;
-    b.add_self_pairs(Exec(), cloth, pairs, 1, b.relative_end(), w, hits, ns, cull, kept, measured, cut_first);
+    if (b.sweeps())
+      b.add_self_pairs_with_references(Exec(), cloth, pairs, 1, w, hits, ns, cull, kept, measured, cut_first);
+    else
+      b.add_self_pairs(Exec(), cloth, pairs, 1, b.relative_end(), w, hits, ns, cull, kept, measured, cut_first);
     b.measured_self(Exec());
     b.finish(Exec(), w);
     hit = measured > 0 ? weft::test::to_host(hits)[0] : 0;
@@ -224,6 +231,31 @@ TEST(WEFT_TEST_SUITE, proximity_self_pairs_cut_first_or_inline_give_the_same_bit
   }
 }
 
+// The same with reference moves, the two triangles wanting 2 mm each along x, opposite ways (their
+// references differ by 4 mm): at 3 cm the pair is past every bound even after the references (2.6 cm of
+// distance left against Q = 2 cm, and 4 mm is less than half the gap, so it anchors nothing), and the cut
+// drops it; at 1 cm it bounds, at 2 mm it is a contact, at 5 cm it is beyond reach.
+TEST(WEFT_TEST_SUITE, proximity_self_pairs_with_references_cut_first_or_inline_give_the_same_bits) {
+  weft::BoundSettings settings;
+  settings.predicted_reference = true;
+  for (const real gap : {0.002, 0.01, 0.03, 0.05}) {
+    uint32_t hit[2];
+    long measured[2];
+    std::vector<real> bounds[2];
+    for (int cut = 0; cut < 2; ++cut) {
+      TwoTriangles s(gap, 0.02, settings);
+      bounds[cut] = s.query_self(cut == 1, hit[cut], measured[cut], 0.002);
+      EXPECT_TRUE(s.b.sweeps()) << gap;
+    }
+    EXPECT_EQ(measured[0], 1) << gap;
+    EXPECT_EQ(measured[1], gap < 0.02 ? 1 : 0) << gap;
+    EXPECT_EQ(hit[0], hit[1]) << gap;
+    EXPECT_EQ(hit[1] != 0, gap < 0.0025) << gap;
+    for (int i = 0; i < 6; ++i)
+      EXPECT_EQ(weft::test::bits(bounds[0][i]), weft::test::bits(bounds[1][i])) << gap << " point " << i;
+  }
+}
+
 // A refresh keeps the last full query's pairs and margins, and spends what each point moved since. Two
 // triangles 1 cm apart with margins of 1.1 cm: the full query bounds every point by gamma 1 cm. The lower
 // triangle then moves 3.9 mm up (within its bound): at a refresh it has spent that much of gamma 1.1 cm,
@@ -356,7 +388,10 @@ struct ThreeTriangles {
     cloth.x = cloth.xs = cloth.xo = b.x0();
     weft::NarrowSettings ns;
     ns.self = true;
-    if (references) b.add_self_pairs_with_references(Exec(), cloth, pairs, 1, w, hits, ns);
+    weft::PairCull<Exec> cull;
+    Kokkos::View<const weft::IndexPair*, Mem> kept;
+    long measured = 0;
+    if (references) b.add_self_pairs_with_references(Exec(), cloth, pairs, 1, w, hits, ns, cull, kept, measured);
     else b.add_pairs(Exec(), cloth, cloth, pairs, 1, b.relative_end(), w, hits, ns);
     b.finish(Exec(), w);
     b.truncate_prediction(Exec(), x, w);
