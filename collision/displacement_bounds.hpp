@@ -315,13 +315,27 @@ struct PairDistances {
   // none of a pair's features are nearer than its triangles' boxes. Its distances would still lower the
   // points' nearest distance, which only nearest margins read: they measure every pair. In a stack of
   // layers a quarter to a third of the candidate pairs are past every bound (the query reaches two margins).
+  // With Ref each feature pair is measured at d - D, and D is at most D' (the two triangles' largest
+  // reference moves added), so g - D' stands for g; D' <= g / 2 besides, so the pair anchors nothing.
+  // References only shrink over the rounds (anchored points go back to t), so a pair past every bound at
+  // the first round stays so at the later ones.
+  KOKKOS_INLINE_FUNCTION real largest_reference(const SideMesh<Mem>& S, const int (&p)[3]) const {
+    real r2 = 0;
+    for (int k = 0; k < 3; ++k) r2 = max_(r2, norm2(ref_move(S, p[k])));
+    return sqrt_(r2);
+  }
   KOKKOS_INLINE_FUNCTION bool past_bounds(int ta, const int (&ia)[3], int tb, const int (&ib)[3]) const {
     const Aabb ab = expand(expand(Aabb{A.x(ia[0]), A.x(ia[0])}, A.x(ia[1])), A.x(ia[2]));
     const Aabb bb = expand(expand(Aabb{B.x(ib[0]), B.x(ib[0])}, B.x(ib[1])), B.x(ib[2]));
     const real g = gap(ab, bb);
     const real lim = max_(ns.detect_scale, ns.ee_detect_scale) * (narrow_detail::face_th(A, ta) + narrow_detail::face_th(B, tb));
     if (!(g > lim * (1 + 1e-6) + 1e-8)) return false;
-    const Fixed f = to_fixed(g);
+    real D = 0;
+    if constexpr (Ref) {
+      D = (largest_reference(A, ia) + largest_reference(B, ib)) * (1 + 1e-6) + 1e-9;
+      if (!(D <= (1 - kCoherence) * g * (1 - 1e-6))) return false;
+    }
+    const Fixed f = to_fixed(g - D);
     for (int k = 0; k < 3; ++k) {
       if (!A.collider && !(f >= qmin(ia[k]) + past)) return false;
       if (!B.collider && !(f >= qmin(ib[k]) + past)) return false;
@@ -349,43 +363,13 @@ struct PairDistances {
     record(P, pp, F, f, d, reach, detect_scale * r);
     return (d2 < lim * lim && narrow_detail::owns_closest_feature(F, TF, u, v, s)) || touches(d);
   }
-  // With Ref, a pair past every bound once its reference moves are taken off: its features are at least
-  // g apart at X0 (its triangles' boxes), its corners' references differ by at most D (the sum of the two
-  // triangles' largest), so each feature pair is measured at d - D >= g - D. Where that is at least every
-  // corner's Q plus `past`, no contact is within reach, and D <= g / 2 (no pair anchors its corners), the
-  // pair changes nothing. References only shrink over the rounds (anchored points go back to t), so a pair
-  // past every bound at the first round stays so at the later ones.
-  KOKKOS_INLINE_FUNCTION real largest_reference(const SideMesh<Mem>& S, const int (&p)[3]) const {
-    real r2 = 0;
-    for (int k = 0; k < 3; ++k) r2 = max_(r2, norm2(ref_move(S, p[k])));
-    return sqrt_(r2);
-  }
-  KOKKOS_INLINE_FUNCTION bool past_bounds_with_references(int ta, const int (&ia)[3], int tb, const int (&ib)[3]) const {
-    const Aabb ab = expand(expand(Aabb{A.x(ia[0]), A.x(ia[0])}, A.x(ia[1])), A.x(ia[2]));
-    const Aabb bb = expand(expand(Aabb{B.x(ib[0]), B.x(ib[0])}, B.x(ib[1])), B.x(ib[2]));
-    const real g = gap(ab, bb);
-    const real lim = max_(ns.detect_scale, ns.ee_detect_scale) * (narrow_detail::face_th(A, ta) + narrow_detail::face_th(B, tb));
-    if (!(g > lim * (1 + 1e-6) + 1e-8)) return false;
-    const real D = (largest_reference(A, ia) + largest_reference(B, ib)) * (1 + 1e-6) + 1e-9;
-    if (!(D <= (1 - kCoherence) * g * (1 - 1e-6))) return false;
-    const Fixed f = to_fixed(g - D);
-    for (int k = 0; k < 3; ++k) {
-      if (!A.collider && !(f >= qmin(ia[k]) + past)) return false;
-      if (!B.collider && !(f >= qmin(ib[k]) + past)) return false;
-    }
-    return true;
-  }
   // Whether a pair has no feature pair to measure: past every bound (with `past`), or its triangles (with
   // Ref, swept over their reference moves) apart along either normal by more than the reach (wider than any
   // contact's).
   KOKKOS_INLINE_FUNCTION bool skipped(int ta, const int (&ia)[3], int tb, const int (&ib)[3], real reach,
                                       bool past) const {
-    if constexpr (Ref) {
-      if (pair_cull_detail::swept_apart(As, ia, Bs, ib, reach)) return true;
-      return past && qmin.extent(0) > 0 && past_bounds_with_references(ta, ia, tb, ib);
-    }
     if (past && qmin.extent(0) > 0 && past_bounds(ta, ia, tb, ib)) return true;
-    return pair_cull_detail::swept_apart(A, ia, B, ib, reach);
+    return Ref ? pair_cull_detail::swept_apart(As, ia, Bs, ib, reach) : pair_cull_detail::swept_apart(A, ia, B, ib, reach);
   }
   KOKKOS_INLINE_FUNCTION bool measures(long i) const {
     const int ta = pairs(i).first, tb = pairs(i).second;
@@ -837,10 +821,7 @@ class DisplacementBounds {
     const long points = long(x0_.extent(0));
     PairDistances<Mem, true> pd{cloth, cloth, pairs, xrel_, w, margin_, dmin_, s_.detect_scale,
                                 s_.bound_pins, hits, ns, swept, swept, anchor_};
-    if (s_.bound_pins && !s_.nearest_margins) {
-      pd.qmin = qmin_;
-      pd.past = s_.still_distance > 0 ? to_fixed(4 * s_.still_distance) + 2 : 0;
-    }
+    skip_past_bounds(pd);
     if (cut_first) {
       measured = cull.keep_if(exec, View<const IndexPair*>(pairs), n, MeasuredPairs<Mem, true>{pd}, nm);
       if (nm == 0) return 0;
@@ -956,12 +937,17 @@ class DisplacementBounds {
                                               const NarrowSettings& ns) const {
     bounds_detail::PairDistances<Mem> pd{A, B, pairs, xend, w, margin_, dmin_, s_.detect_scale, s_.bound_pins, hits, ns};
     pd.touch = touch_;
-    if (s_.bound_pins && !s_.nearest_margins) {
-      // At a still pass d - 4R stands for a nearest distance d, R at most the still distance (StillDistances).
-      pd.qmin = qmin_;
-      pd.past = s_.still_distance > 0 ? bounds_detail::to_fixed(4 * s_.still_distance) + 2 : 0;
-    }
+    skip_past_bounds(pd);
     return pd;
+  }
+  // Pairs past every bound are skipped (PairDistances::past_bounds) unless nearest margins read every
+  // distance. At a still pass d - 4R stands for a nearest distance d, R at most the still distance
+  // (StillDistances).
+  template <bool Ref>
+  void skip_past_bounds(bounds_detail::PairDistances<Mem, Ref>& pd) const {
+    if (!s_.bound_pins || s_.nearest_margins) return;
+    pd.qmin = qmin_;
+    pd.past = s_.still_distance > 0 ? bounds_detail::to_fixed(4 * s_.still_distance) + 2 : 0;
   }
 
   BoundSettings s_;

@@ -54,7 +54,8 @@ struct CollisionSettings {
   real early_pass_fraction = 0.01;       // proximity: a pass runs early when more of the moving points were cut back
   real still_tolerance = 0.1;            // proximity: a refresh keeps the last measured contacts while no point moved
                                          // more than this times the thinnest cloth thickness since (0: off)
-  real early_pass_excess = 1;            // proximity: ... counting only points that wanted more than (1 + this) x their bound
+  real early_pass_excess = 1;            // proximity: a point cut back counts towards that only where it wanted
+                                         // more than (1 + this) times its bound
   int max_early_passes = 1;              // proximity: early passes per substep at most
   int max_collider_early_passes = 4;     // proximity: as many while points a collider pushes are cut back
   bool pair_refresh = true;              // proximity: a pass may keep the last full query's self pairs
