@@ -18,8 +18,9 @@ template <int N>
 KOKKOS_INLINE_FUNCTION real xpbd_delta_lambda(real C, const Vec3 (&g)[N], const real (&w)[N], const Vec3 (&dx)[N],
                                               real lambda, const XpbdMaterial& m, real h) {
   const bool pulls = pulls_only(m);
-  const real alpha = (C < 0 && !pulls ? m.compress_compliance : m.compliance) / (h * h);
-  const real gamma = m.damping_ratio / h;
+  const real inv_h = 1 / h;  // one division for both
+  const real alpha = (C < 0 && !pulls ? m.compress_compliance : m.compliance) * (inv_h * inv_h);
+  const real gamma = m.damping_ratio * inv_h;
   real wg = 0, gdx = 0;
   for (int i = 0; i < N; ++i) {
     wg += w[i] * dot(g[i], g[i]);
