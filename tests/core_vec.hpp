@@ -1,6 +1,8 @@
 // 3-vector and 3x3 matrix math.
 #include "core/vec.hpp"
 
+#include <cmath>
+
 namespace {
 
 TEST(WEFT_TEST_SUITE, vec3_identities) {
@@ -21,6 +23,25 @@ TEST(WEFT_TEST_SUITE, mat3_inverse_and_det) {
     for (int j = 0; j < 3; ++j) EXPECT_NEAR(p.m[i][j], i == j ? 1.0 : 0.0, 1e-15);
   const weft::Mat3 t = weft::transpose(m);
   EXPECT_EQ(t.m[0][2], m.m[2][0]);
+}
+
+// weft's atan2 (+ - * / and sqrt only, so that every backend rounds alike) against the C library's, over
+// every quadrant, ratios near 0 and 1, and pairs from 1e-100 to 1e100 (its reductions square them).
+TEST(WEFT_TEST_SUITE, atan2_is_within_a_few_ulp_of_the_c_library) {
+  weft::test::TestRng rng(5);
+  for (int n = 0; n < 200000; ++n) {
+    const double scale = std::pow(10.0, rng.uniform(-100, 100));
+    double y = rng.uniform(-1, 1) * scale, x = rng.uniform(-1, 1) * scale;
+    if (n % 7 == 0) y *= 1e-9;  // near the axes
+    if (n % 11 == 0) x *= 1e-9;
+    if (n % 13 == 0) y = x * (1 + rng.uniform(-1e-12, 1e-12));  // near the diagonal, where the branch turns
+    const double ref = std::atan2(y, x);
+    const double ulp = std::abs(std::nextafter(ref, INFINITY) - ref);
+    EXPECT_LE(std::abs(weft::atan2_(y, x) - ref), 4 * ulp) << y << " " << x;
+  }
+  EXPECT_EQ(weft::atan2_(0, 0), 0.0);
+  EXPECT_EQ(weft::atan2_(0, -1), weft::pi);
+  EXPECT_EQ(weft::atan2_(0, 1), 0.0);
 }
 
 TEST(WEFT_TEST_SUITE, vec3_math_in_kernels_matches_host) {
