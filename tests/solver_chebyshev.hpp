@@ -16,6 +16,7 @@ weft::Scene unconverged_sheet(real rho) {
   s.settings.substeps = 1;
   s.settings.iterations = 50;
   s.settings.chebyshev_rho = rho;
+  s.settings.coarse_levels = 0;  // the scene's levels would hold it
   return s;
 }
 
