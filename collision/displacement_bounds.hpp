@@ -324,36 +324,36 @@ struct PairDistances {
     for (int k = 0; k < 3; ++k) r2 = max_(r2, norm2(ref_move(S, p[k])));
     return sqrt_(r2);
   }
+  // Boxes a gap g apart, beyond the contact limit lim: whether f = to_fixed(g - D) is at least every cloth
+  // corner's Q plus `past`, corners p of side S (colliders' skipped).
+  KOKKOS_INLINE_FUNCTION static bool beyond_contact(real g, real lim) { return g > lim * (1 + 1e-6) + 1e-8; }
+  template <int N>
+  KOKKOS_INLINE_FUNCTION bool past_every_q(Fixed f, const SideMesh<Mem>& S, const int (&p)[N]) const {
+    for (int k = 0; k < N; ++k)
+      if (!S.collider && !(f >= qmin(p[k]) + past)) return false;
+    return true;
+  }
   KOKKOS_INLINE_FUNCTION bool past_bounds(int ta, const int (&ia)[3], int tb, const int (&ib)[3]) const {
     const Aabb ab = expand(expand(Aabb{A.x(ia[0]), A.x(ia[0])}, A.x(ia[1])), A.x(ia[2]));
     const Aabb bb = expand(expand(Aabb{B.x(ib[0]), B.x(ib[0])}, B.x(ib[1])), B.x(ib[2]));
     const real g = gap(ab, bb);
     const real lim = max_(ns.detect_scale, ns.ee_detect_scale) * (narrow_detail::face_th(A, ta) + narrow_detail::face_th(B, tb));
-    if (!(g > lim * (1 + 1e-6) + 1e-8)) return false;
+    if (!beyond_contact(g, lim)) return false;
     real D = 0;
     if constexpr (Ref) {
       D = (largest_reference(A, ia) + largest_reference(B, ib)) * (1 + 1e-6) + 1e-9;
       if (!(D <= (1 - kCoherence) * g * (1 - 1e-6))) return false;
     }
     const Fixed f = to_fixed(g - D);
-    for (int k = 0; k < 3; ++k) {
-      if (!A.collider && !(f >= qmin(ia[k]) + past)) return false;
-      if (!B.collider && !(f >= qmin(ib[k]) + past)) return false;
-    }
-    return true;
+    return past_every_q(f, A, ia) && past_every_q(f, B, ib);
   }
-  // On the host, past_bounds per self feature pair (corners pts): boxes farther apart than every corner's Q
-  // (plus `past`) and than the contact limit, whose distance can change no bound and make no contact. A
-  // triangle pair next to another shares a corner and is never past every bound, yet most of its feature
-  // pairs are: a sheet's neighbours lie about an edge apart, where Q is under an edge.
+  // On the host, past_bounds per self feature pair (corners pts of the cloth, boxes a and b, contact limit
+  // lim): a triangle pair next to another shares a corner and is never past every bound, yet most of its
+  // feature pairs are: a sheet's neighbours lie about an edge apart, where Q is under an edge.
   KOKKOS_INLINE_FUNCTION bool past_feature(const Aabb& a, const Aabb& b, const int (&pts)[4], real lim) const {
     if (qmin.extent(0) == 0) return false;
     const real g = gap(a, b);
-    if (!(g > lim * (1 + 1e-6) + 1e-8)) return false;
-    const Fixed f = to_fixed(g);
-    for (int k = 0; k < 4; ++k)
-      if (!(f >= qmin(pts[k]) + past)) return false;
-    return true;
+    return beyond_contact(g, lim) && past_every_q(to_fixed(g), A, pts);
   }
   KOKKOS_INLINE_FUNCTION real margin_of(const SideMesh<Mem>& S, int t) const {
     return S.collider ? detect_scale * narrow_detail::face_th(S, t) : margin(t);
